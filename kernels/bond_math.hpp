@@ -1,0 +1,52 @@
+#pragma once
+// Per-bond maths of the elastic MPS model, with MODEL.md's names. Every kernel
+// and every test calls these; nothing else spells the formulas out.
+//
+//   w(r)        = re / r - 1                      (0 < r < re), else 0
+//   theta_ij    = (theta_i + theta_j) / 2, from half angles c = cos(theta/2),
+//                 s = sin(theta/2):  cos theta_ij = c_i c_j - s_i s_j,
+//                                    sin theta_ij = s_i c_j + c_i s_j
+//   r_ij        = r_j - r_i
+//   u_ij        = r_ij - R(theta_ij) r0_ij        (rotation-corrected displacement)
+//
+// Every operation is symmetric under i <-> j, so u_ji = -u_ij bit for bit
+// (with -ffp-contract=off).
+#include <cmath>
+
+namespace mpsolid::bond_math {
+
+inline double weight(double r, double re) {
+  return (r > 0.0 && r < re) ? re / r - 1.0 : 0.0;
+}
+
+inline double cross(double ax, double ay, double bx, double by) {
+  return ax * by - ay * bx;
+}
+
+struct Rotation {
+  double cos, sin;
+};
+
+// Rotation by theta_ij = (theta_i + theta_j) / 2 from the two half angles.
+inline Rotation bond_rotation(double ci, double si, double cj, double sj) {
+  return {ci * cj - si * sj, si * cj + ci * sj};
+}
+
+struct BondVectors {
+  double rx, ry;  // r_ij = r_j - r_i
+  double ux, uy;  // u_ij = r_ij - R(theta_ij) r0_ij
+};
+
+inline BondVectors bond_vectors(double xi, double yi, double xj, double yj, Rotation rot,
+                                double r0x, double r0y) {
+  const double rx = xj - xi;
+  const double ry = yj - yi;
+  return {rx, ry, rx - (rot.cos * r0x - rot.sin * r0y), ry - (rot.sin * r0x + rot.cos * r0y)};
+}
+
+// Normal extension u_ij . e_ij with e_ij = r_ij / |r_ij|.
+inline double normal_extension(const BondVectors& b, double inv_length) {
+  return (b.ux * b.rx + b.uy * b.ry) * inv_length;
+}
+
+}  // namespace mpsolid::bond_math

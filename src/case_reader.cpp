@@ -1,0 +1,399 @@
+#include "src/case_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "src/case_overrides.hpp"
+#include "src/geometry.hpp"
+
+namespace mpsolid {
+
+namespace {
+
+const std::vector<std::string> kModels = {"paper"};
+
+// Where a value came from: "file:line" or "--set key=value".
+std::string origin(const TomlValue& v, const std::string& file) {
+  const auto loc = v.location();
+  const std::string& name = loc.file_name();
+  if (name.rfind("--set", 0) == 0) return name;
+  if (name == "unknown file") return file;
+  return fmt::format("{}:{}", name, loc.line());
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+std::string describe(const TomlValue& v) {
+  std::string text = toml::format(v);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+// Reads one table, remembering which keys were used; finish() rejects the rest.
+class TableReader {
+ public:
+  TableReader(const TomlValue& table, std::string path, const std::string& file)
+      : table_(table), path_(std::move(path)), file_(file) {}
+
+  std::string key_path(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    const auto& entries = table_.as_table();
+    const auto it = entries.find(key);
+    const std::string where = it != entries.end() ? origin(it->second, file_) : file_;
+    throw InputError(fmt::format("{}: {}: {}", where, key_path(key), problem));
+  }
+
+  const TomlValue* find(const std::string& key) {
+    used_.insert(key);
+    const auto& entries = table_.as_table();
+    const auto it = entries.find(key);
+    return it == entries.end() ? nullptr : &it->second;
+  }
+
+  const TomlValue& require(const std::string& key, const std::string& what) {
+    const TomlValue* v = find(key);
+    if (!v) throw InputError(fmt::format("{}: {} is missing ({})", file_, key_path(key), what));
+    return *v;
+  }
+
+  static bool is_number(const TomlValue& v) { return v.is_floating() || v.is_integer(); }
+  static double as_number(const TomlValue& v) {
+    return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
+  }
+
+  double number(const TomlValue& v, const std::string& key) const {
+    if (!is_number(v))
+      fail(key, fmt::format("expected a number, got {} ({})", describe(v), type_name(v)));
+    const double x = as_number(v);
+    if (!std::isfinite(x)) fail(key, fmt::format("expected a finite number, got {}", x));
+    return x;
+  }
+
+  double number(const std::string& key, const std::string& what) {
+    return number(require(key, what), key);
+  }
+  double number_or(const std::string& key, double fallback) {
+    const TomlValue* v = find(key);
+    return v ? number(*v, key) : fallback;
+  }
+
+  std::string string(const TomlValue& v, const std::string& key) const {
+    if (!v.is_string())
+      fail(key, fmt::format("expected a string, got {} ({})", describe(v), type_name(v)));
+    return v.as_string().str;
+  }
+  std::string string(const std::string& key, const std::string& what) {
+    return string(require(key, what), key);
+  }
+  std::string string_or(const std::string& key, const std::string& fallback) {
+    const TomlValue* v = find(key);
+    return v ? string(*v, key) : fallback;
+  }
+
+  // [a, b] with two numbers.
+  void pair(const std::string& key, const std::string& what, double out[2]) {
+    const TomlValue& v = require(key, what);
+    if (!v.is_array() || v.as_array().size() != 2 || !is_number(v.as_array()[0]) ||
+        !is_number(v.as_array()[1]))
+      fail(key, fmt::format("expected two numbers [a, b] ({}), got {}", what, describe(v)));
+    out[0] = number(v.as_array()[0], key);
+    out[1] = number(v.as_array()[1], key);
+  }
+
+  const TomlValue& subtable(const std::string& key, const std::string& what) {
+    const TomlValue& v = require(key, what);
+    if (!v.is_table()) fail(key, fmt::format("expected a table ({})", what));
+    return v;
+  }
+  const TomlValue* subtable_or_null(const std::string& key) {
+    const TomlValue* v = find(key);
+    if (v && !v->is_table()) fail(key, "expected a table");
+    return v;
+  }
+
+  void range_check(const std::string& key, double value, bool ok, const std::string& allowed) {
+    if (!ok) fail(key, fmt::format("{} is outside the allowed range {}", value, allowed));
+  }
+
+  void finish(const std::vector<std::string>& allowed) const {
+    for (const auto& [key, value] : table_.as_table()) {
+      if (used_.count(key)) continue;
+      throw InputError(fmt::format("{}: {}: unknown key (allowed here: {})", origin(value, file_),
+                                   key_path(key), join(allowed)));
+    }
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  static std::string type_name(const TomlValue& v) {
+    std::ostringstream s;
+    s << v.type();
+    return s.str();
+  }
+
+  const TomlValue& table_;
+  std::string path_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+Kind parse_kind(TableReader& r, const std::string& key, const std::string& text) {
+  if (text == "elastic") return Kind::elastic;
+  if (text == "rigid") return Kind::rigid;
+  if (text == "wall") return Kind::wall;
+  r.fail(key, fmt::format("unknown kind '{}' (allowed: elastic, rigid, wall)", text));
+}
+
+std::string format_number(double x) {
+  return fmt::format("{:.17g}", x);
+}
+
+// The case as the solver understood it: every default and override filled in,
+// derived figures as comments. It reads back as the same case.
+std::string resolved_toml(const CaseSpec& c) {
+  std::string out = fmt::format(
+      "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
+      c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", m.name,
+                       format_number(m.lambda()), format_number(m.mu()));
+  out += fmt::format("\nname = \"{}\"\nmodel = \"{}\"\nl0 = {}\ndepth = {}\n", c.name, c.model,
+                     format_number(c.l0), format_number(c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", m.name,
+                       format_number(m.youngs_modulus), format_number(m.poisson_ratio),
+                       format_number(m.density));
+  for (const auto& b : c.bodies)
+    out += fmt::format(
+        "\n[bodies.{}]\nkind = \"{}\"\nmaterial = \"{}\"\nx = [{}, {}]\ny = [{}, {}]\n", b.name,
+        kind_name(b.kind), c.materials[static_cast<std::size_t>(b.material)].name,
+        format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
+  for (const auto& l : c.loads)
+    out +=
+        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = \"{}\"\nforce = [{}, {}]\nstart = {}\n",
+                    l.name, c.bodies[static_cast<std::size_t>(l.body)].name,
+                    format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
+  out += fmt::format("\n[time]\ndt = {}\nend = {}\n\n[output]\nframe_interval = {}\n",
+                     format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
+  return out;
+}
+
+bool rectangles_overlap(const BodySpec& a, const BodySpec& b) {
+  return a.x[0] < b.x[1] && b.x[0] < a.x[1] && a.y[0] < b.y[1] && b.y[0] < a.y[1];
+}
+
+CaseSpec build_case(const TomlValue& root, const std::string& file, const std::string& stem) {
+  if (!root.is_table()) throw InputError(fmt::format("{}: the case must be a TOML table", file));
+  CaseSpec c;
+  c.source = file;
+  TableReader top(root, "", file);
+
+  c.name = top.string_or("name", stem);
+  if (c.name.empty() || c.name.find('/') != std::string::npos)
+    top.fail("name", "must be a non-empty name without '/'");
+  c.model = top.string_or("model", "paper");
+  if (std::find(kModels.begin(), kModels.end(), c.model) == kModels.end())
+    top.fail("model", fmt::format("unknown model '{}' (allowed: {})", c.model, join(kModels)));
+  c.l0 = top.number("l0", "the lattice spacing in m");
+  top.range_check("l0", c.l0, c.l0 > 0, "(0, inf) m");
+  c.depth = top.number_or("depth", 1.0);
+  top.range_check("depth", c.depth, c.depth > 0, "(0, inf) m");
+
+  // Materials.
+  std::map<std::string, int> material_index;
+  {
+    const TomlValue& table = top.subtable("materials", "one [materials.NAME] table per material");
+    if (table.as_table().empty())
+      throw InputError(fmt::format("{}: materials: at least one material is needed", file));
+    for (const auto& [name, value] : table.as_table()) {
+      if (!value.is_table())
+        throw InputError(fmt::format("{}: materials.{}: expected a table with E, nu, rho",
+                                     origin(value, file), name));
+      TableReader r(value, "materials." + name, file);
+      Material m;
+      m.name = name;
+      m.youngs_modulus = r.number("E", "Young's modulus in Pa");
+      r.range_check("E", m.youngs_modulus, m.youngs_modulus > 0, "(0, inf) Pa");
+      m.poisson_ratio = r.number("nu", "Poisson's ratio");
+      r.range_check("nu", m.poisson_ratio, m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5,
+                    "(-1, 0.5)");
+      m.density = r.number("rho", "density in kg/m^3");
+      r.range_check("rho", m.density, m.density > 0, "(0, inf) kg/m^3");
+      r.finish({"E", "nu", "rho"});
+      material_index[name] = static_cast<int>(c.materials.size());
+      c.materials.push_back(m);
+    }
+  }
+
+  // Bodies.
+  std::map<std::string, int> body_index;
+  std::int64_t particle_total = 0;
+  {
+    const TomlValue& table = top.subtable("bodies", "one [bodies.NAME] table per body");
+    if (table.as_table().empty())
+      throw InputError(fmt::format("{}: bodies: at least one body is needed", file));
+    for (const auto& [name, value] : table.as_table()) {
+      if (!value.is_table())
+        throw InputError(fmt::format("{}: bodies.{}: expected a table with kind, material, x, y",
+                                     origin(value, file), name));
+      TableReader r(value, "bodies." + name, file);
+      BodySpec b;
+      b.name = name;
+      b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
+      const std::string material = r.string("material", "the name of a [materials.NAME] table");
+      if (!material_index.count(material))
+        r.fail("material", fmt::format("no material named '{}' (defined: {})", material, join([&] {
+                                         std::vector<std::string> names;
+                                         for (const auto& m : c.materials) names.push_back(m.name);
+                                         return names;
+                                       }())));
+      b.material = material_index[material];
+      r.pair("x", "the rectangle's x range [x0, x1] in m", b.x);
+      r.pair("y", "the rectangle's y range [y0, y1] in m", b.y);
+      if (!(b.x[0] < b.x[1]))
+        r.fail("x", fmt::format("needs x0 < x1, got [{}, {}]", b.x[0], b.x[1]));
+      if (!(b.y[0] < b.y[1]))
+        r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
+      r.finish({"kind", "material", "x", "y"});
+      const std::int64_t sites =
+          lattice_span(b.x[0], b.x[1], c.l0).count() * lattice_span(b.y[0], b.y[1], c.l0).count();
+      if (sites == 0)
+        throw InputError(fmt::format(
+            "{}: bodies.{}: the body is empty: no lattice site (centre at (k + 1/2) l0, l0 = {} m) "
+            "lies in x = [{}, {}), y = [{}, {})",
+            origin(value, file), name, c.l0, b.x[0], b.x[1], b.y[0], b.y[1]));
+      particle_total += sites;
+      body_index[name] = static_cast<int>(c.bodies.size());
+      c.bodies.push_back(b);
+    }
+    for (std::size_t a = 0; a < c.bodies.size(); ++a)
+      for (std::size_t b = a + 1; b < c.bodies.size(); ++b)
+        if (rectangles_overlap(c.bodies[a], c.bodies[b]))
+          throw InputError(fmt::format(
+              "{}: bodies.{} and bodies.{} overlap (x = [{}, {}], y = [{}, {}] and x = [{}, {}], "
+              "y = [{}, {}]); bodies may touch but not overlap",
+              file, c.bodies[a].name, c.bodies[b].name, c.bodies[a].x[0], c.bodies[a].x[1],
+              c.bodies[a].y[0], c.bodies[a].y[1], c.bodies[b].x[0], c.bodies[b].x[1],
+              c.bodies[b].y[0], c.bodies[b].y[1]));
+    // Bond indices are 32-bit; about 13 entries per particle.
+    if (particle_total > (std::numeric_limits<std::uint32_t>::max() / 16))
+      top.fail("l0", fmt::format("{} particles is more than this build supports", particle_total));
+  }
+
+  // Loads.
+  if (const TomlValue* table = top.subtable_or_null("loads")) {
+    for (const auto& [name, value] : table->as_table()) {
+      if (!value.is_table())
+        throw InputError(fmt::format("{}: loads.{}: expected a table with body, force, start",
+                                     origin(value, file), name));
+      TableReader r(value, "loads." + name, file);
+      LoadSpec l;
+      l.name = name;
+      const std::string type = r.string_or("type", "step");
+      if (type != "step")
+        r.fail("type", fmt::format("unknown load type '{}' (allowed: step)", type));
+      const std::string body = r.string("body", "the name of a [bodies.NAME] table");
+      if (!body_index.count(body)) {
+        std::vector<std::string> names;
+        for (const auto& b : c.bodies) names.push_back(b.name);
+        r.fail("body", fmt::format("no body named '{}' (defined: {})", body, join(names)));
+      }
+      l.body = body_index[body];
+      if (c.bodies[static_cast<std::size_t>(l.body)].kind == Kind::wall)
+        r.fail(
+            "body",
+            fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing", body));
+      r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
+      l.start = r.number_or("start", 0.0);
+      r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
+      r.finish({"type", "body", "force", "start"});
+      c.loads.push_back(l);
+    }
+  }
+
+  // Time.
+  {
+    const TomlValue& table = top.subtable("time", "[time] with dt and end");
+    TableReader r(table, "time", file);
+    c.dt = r.number("dt", "the time step in s");
+    r.range_check("dt", c.dt, c.dt > 0, "(0, inf) s");
+    c.end = r.number("end", "the end time in s");
+    r.range_check("end", c.end, c.end >= c.dt, fmt::format("[dt, inf) = [{}, inf) s", c.dt));
+    r.finish({"dt", "end"});
+  }
+
+  // Output.
+  c.frame_interval = c.end / 10.0;
+  if (const TomlValue* table = top.subtable_or_null("output")) {
+    TableReader r(*table, "output", file);
+    c.frame_interval = r.number_or("frame_interval", c.frame_interval);
+    r.range_check("frame_interval", c.frame_interval, c.frame_interval >= c.dt,
+                  fmt::format("[dt, inf) = [{}, inf) s", c.dt));
+    r.finish({"frame_interval"});
+  }
+
+  top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "time", "output"});
+  c.resolved_toml = resolved_toml(c);
+  return c;
+}
+
+}  // namespace
+
+std::int64_t CaseSpec::step_count() const {
+  // Nearest whole step when end is a multiple of dt up to round-off, else the
+  // first step at or past end.
+  const double ratio = end / dt;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
+    return static_cast<std::int64_t>(nearest);
+  return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+std::int64_t CaseSpec::steps_per_frame() const {
+  const double ratio = frame_interval / dt;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
+    return std::max<std::int64_t>(1, static_cast<std::int64_t>(nearest));
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
+}
+
+CaseSpec parse_case(const std::string& toml_text, const std::string& source_name,
+                    const std::vector<std::string>& overrides) {
+  TomlValue root;
+  try {
+    std::istringstream in(toml_text);
+    root = toml::parse<toml::discard_comments, std::map, std::vector>(in, source_name);
+  } catch (const toml::syntax_error& e) {
+    throw InputError(fmt::format("{}: TOML syntax error:\n{}", source_name, e.what()));
+  }
+  apply_overrides(root, overrides);
+  return build_case(root, source_name, std::filesystem::path(source_name).stem().string());
+}
+
+CaseSpec read_case(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(fmt::format(
+        "{}: cannot open the case file ({})", path,
+        std::filesystem::exists(path) ? "permission denied or not a file" : "no such file"));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_case(text.str(), path, overrides);
+}
+
+}  // namespace mpsolid

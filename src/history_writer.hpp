@@ -1,0 +1,36 @@
+#pragma once
+// history.csv: one row per frame, 17 significant digits, SI units.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "src/diagnostics.hpp"
+#include "src/simulation.hpp"
+
+namespace mpsolid {
+
+// Column names for a case: the fixed diagnostics, then per rigid body
+// B.x, B.y, B.theta, then per elastic body B.xmin, B.xmax, B.ymin, B.ymax.
+std::vector<std::string> history_columns(const Simulation& sim);
+std::vector<double> history_row(const Simulation& sim, const Diagnostics& d);
+
+class HistoryWriter {
+ public:
+  // Writes to a staging file; publish() renames it to `path`.
+  HistoryWriter(const std::filesystem::path& path, const Simulation& sim);
+  ~HistoryWriter();
+  HistoryWriter(const HistoryWriter&) = delete;
+  HistoryWriter& operator=(const HistoryWriter&) = delete;
+
+  void write(const Simulation& sim, const Diagnostics& d);
+  void publish();
+  std::uintmax_t bytes_written() const { return bytes_; }
+
+ private:
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+  std::uintmax_t bytes_ = 0;
+};
+
+}  // namespace mpsolid

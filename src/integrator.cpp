@@ -1,0 +1,28 @@
+#include "src/integrator.hpp"
+
+#include "src/parallel.hpp"
+
+namespace mpsolid {
+
+void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
+  parallel_for(range.begin, range.end, [&](std::size_t i) {
+    p.vx[i] += dt * p.fx[i] * p.inv_mass[i];
+    p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
+    p.x[i] += dt * p.vx[i];
+    p.y[i] += dt * p.vy[i];
+    if (with_rotation) {
+      p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
+      p.theta[i] += dt * p.omega[i];
+    }
+  });
+}
+
+void kick(ParticleStore& p, Range range, double dt, bool with_rotation) {
+  parallel_for(range.begin, range.end, [&](std::size_t i) {
+    p.vx[i] += dt * p.fx[i] * p.inv_mass[i];
+    p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
+    if (with_rotation) p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
+  });
+}
+
+}  // namespace mpsolid

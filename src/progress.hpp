@@ -1,0 +1,27 @@
+#pragma once
+// Progress line on a terminal (simulated time, steps/s, ETA), redrawn at most
+// twice a second; silent when stderr is not a terminal (CI, pipes).
+#include <chrono>
+#include <cstdint>
+
+namespace mpsolid {
+
+class Progress {
+ public:
+  Progress(std::int64_t total_steps, double dt, bool enabled);
+  void update(std::int64_t step);
+  void finish();  // ends the line
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::int64_t total_;
+  double dt_;
+  bool enabled_;
+  Clock::time_point start_, last_;
+  std::int64_t start_step_ = -1;
+  bool drawn_ = false;
+};
+
+bool stderr_is_terminal();
+
+}  // namespace mpsolid

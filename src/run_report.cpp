@@ -1,0 +1,67 @@
+#include "src/run_report.hpp"
+
+#include <fmt/format.h>
+
+#include "build_info.hpp"
+
+namespace mpsolid {
+
+namespace {
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<int>(c));
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+std::string run_report_json(const Simulation& sim, const RunFacts& facts) {
+  const PhaseTimers& timers = sim.timers();
+  const double steps = static_cast<double>(facts.steps);
+  const double steps_per_second = facts.wall_seconds > 0 ? steps / facts.wall_seconds : 0.0;
+  std::string phases;
+  for (std::size_t k = 0; k < kPhaseNames.size(); ++k)
+    phases += fmt::format("{}    {}: {:.6g}", k ? ",\n" : "", quoted(kPhaseNames[k]),
+                          timers.seconds(static_cast<Phase>(k)));
+  const std::size_t particles = sim.particles().size();
+  return fmt::format(
+      "{{\n"
+      "  \"program\": \"mpsolid\",\n"
+      "  \"version\": {},\n"
+      "  \"git_commit\": {},\n"
+      "  \"compiler\": {},\n"
+      "  \"build_type\": {},\n"
+      "  \"flags\": {},\n"
+      "  \"command_line\": {},\n"
+      "  \"case\": {},\n"
+      "  \"model\": {},\n"
+      "  \"outcome\": {},\n"
+      "  \"threads\": {},\n"
+      "  \"particles\": {},\n"
+      "  \"bonds\": {},\n"
+      "  \"dt\": {:.17g},\n"
+      "  \"steps\": {},\n"
+      "  \"final_step\": {},\n"
+      "  \"simulated_time\": {:.17g},\n"
+      "  \"frames\": {},\n"
+      "  \"bytes_written\": {},\n"
+      "  \"wall_seconds\": {:.6g},\n"
+      "  \"steps_per_second\": {:.6g},\n"
+      "  \"particle_steps_per_second\": {:.6g},\n"
+      "  \"phase_seconds\": {{\n{}\n  }}\n"
+      "}}\n",
+      quoted(build_info::version), quoted(build_info::git_commit), quoted(build_info::compiler),
+      quoted(build_info::build_type), quoted(build_info::cxx_flags), quoted(facts.command_line),
+      quoted(sim.spec().name), quoted(sim.spec().model), quoted(facts.outcome), facts.threads,
+      particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps, sim.step(),
+      sim.time(), facts.frames, facts.bytes_written, facts.wall_seconds, steps_per_second,
+      steps_per_second * static_cast<double>(particles), phases);
+}
+
+}  // namespace mpsolid

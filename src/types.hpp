@@ -1,0 +1,30 @@
+#pragma once
+// Basic types shared by the whole solver.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace mpsolid {
+
+// Spatial dimension: the solver is 2D plane strain (MODEL.md section 1).
+inline constexpr int kDim = 2;
+
+// Kind of a particle. Storage is grouped in this order: [wall | elastic | rigid].
+enum class Kind : std::int8_t { wall = 0, elastic = 1, rigid = 2 };
+
+const char* kind_name(Kind kind);
+
+// Half-open index range [begin, end) into the particle store.
+struct Range {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t size() const { return end - begin; }
+  bool empty() const { return end == begin; }
+};
+
+// Bad user input (case file, command line): reported with exit code 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace mpsolid
