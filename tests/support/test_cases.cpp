@@ -1,0 +1,59 @@
+#include "tests/support/test_cases.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+namespace mpsolid::testing {
+
+std::string source_path(const std::string& relative) {
+  return std::string(MPSOLID_SOURCE_DIR) + "/" + relative;
+}
+
+CaseSpec rod_case(const std::vector<std::string>& overrides) {
+  return read_case(source_path("cases/shock_rod.toml"), overrides);
+}
+
+CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt) {
+  const double l0 = 1e-3;
+  std::string text = fmt::format(R"(
+l0 = {l0}
+[materials.rubber]
+E = 2.8e6
+nu = 0.45
+rho = 1010.0
+[bodies.block]
+kind = "elastic"
+material = "rubber"
+x = [0.0, {x1}]
+y = [0.0, {y1}]
+[time]
+dt = {dt}
+end = {dt}
+)",
+                                 fmt::arg("l0", l0), fmt::arg("x1", nx * l0),
+                                 fmt::arg("y1", ny * l0), fmt::arg("dt", dt));
+  if (with_rigid_plate)
+    text += fmt::format(R"(
+[bodies.plate]
+kind = "rigid"
+material = "rubber"
+x = [{x0}, 0.0]
+y = [{y0}, {y1}]
+)",
+                        fmt::arg("x0", -3 * l0), fmt::arg("y0", -2 * l0),
+                        fmt::arg("y1", (ny + 2) * l0));
+  return parse_case(text, "free_block.toml");
+}
+
+bool same_bits(const ParticleStore& a, const ParticleStore& b) {
+  auto same = [](const std::vector<double>& u, const std::vector<double>& v) {
+    return u.size() == v.size() && std::memcmp(u.data(), v.data(), u.size() * sizeof(double)) == 0;
+  };
+  return same(a.x, b.x) && same(a.y, b.y) && same(a.vx, b.vx) && same(a.vy, b.vy) &&
+         same(a.theta, b.theta) && same(a.omega, b.omega) && same(a.strain, b.strain) &&
+         same(a.pressure, b.pressure) && same(a.fx, b.fx) && same(a.fy, b.fy) &&
+         same(a.torque, b.torque);
+}
+
+}  // namespace mpsolid::testing

@@ -1,0 +1,120 @@
+// Neighbour search and the bond table: n0, bond counts, and the three
+// searches (cell list, k-d tree, brute force) giving identical lists.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "neighbor/neighbor_lists.hpp"
+#include "src/bonds.hpp"
+#include "src/simulation.hpp"
+#include "tests/support/test_cases.hpp"
+
+namespace mpsolid {
+namespace {
+
+TEST(NumberDensity, MatchesModelValue) {
+  for (double l0 : {2e-3, 1e-3, 0.37}) {
+    const KernelConstants k = kernel_constants(l0, 1.0);
+    EXPECT_NEAR(k.n0, 6.539697, 1e-6) << "l0 = " << l0;
+    EXPECT_DOUBLE_EQ(k.re, 2.1 * l0);
+  }
+}
+
+TEST(BondTable, InteriorParticleHasTwelveBondsSummingToN0) {
+  Simulation sim(testing::rod_case());
+  const ParticleStore& p = sim.particles();
+  const BondTable& bonds = sim.state().bonds;
+  // A rod particle far from every surface: x = 51 mm, y = 1 mm.
+  std::size_t interior = p.size();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::abs(p.x0[i] - 0.051) < 1e-9 && std::abs(p.y0[i] - 0.001) < 1e-9) interior = i;
+  ASSERT_LT(interior, p.size());
+  EXPECT_EQ(bonds.end(interior) - bonds.begin(interior), 12u);
+  double n = 0.0;
+  for (std::uint32_t b = bonds.begin(interior); b < bonds.end(interior); ++b)
+    n += bonds.strain_coef[b] * std::hypot(bonds.r0x[b], bonds.r0y[b]) * bonds.constants.n0 / 2.0;
+  EXPECT_NEAR(n, 6.539697, 1e-6);
+  // 1130 particles in the paper's case; every bond stored from both ends.
+  EXPECT_EQ(p.size(), 1130u);
+  EXPECT_EQ(bonds.entry_count() % 2, 0u);
+}
+
+TEST(BondTable, IsSymmetricAndSorted) {
+  Simulation sim(testing::rod_case());
+  const BondTable& bonds = sim.state().bonds;
+  for (std::size_t i = 0; i < bonds.particle_count(); ++i)
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      if (b + 1 < bonds.end(i)) {
+        EXPECT_LT(bonds.neighbor[b], bonds.neighbor[b + 1]);
+      }
+      const std::size_t j = bonds.neighbor[b];
+      bool found = false;
+      for (std::uint32_t c = bonds.begin(j); c < bonds.end(j); ++c) {
+        if (bonds.neighbor[c] != i) continue;
+        {
+          found = true;
+          // r0_ji = -r0_ij and the constants agree, bit for bit.
+          EXPECT_EQ(bonds.r0x[c], -bonds.r0x[b]);
+          EXPECT_EQ(bonds.r0y[c], -bonds.r0y[b]);
+          EXPECT_EQ(bonds.spring_coef[c], bonds.spring_coef[b]);
+          EXPECT_EQ(bonds.strain_coef[c], bonds.strain_coef[b]);
+        }
+      }
+      EXPECT_TRUE(found) << i << " -> " << j << " has no reverse bond";
+    }
+}
+
+void expect_all_searches_agree(const std::vector<double>& x, const std::vector<double>& y,
+                               double radius, std::size_t min_pairs) {
+  const NeighborLists brute = find_neighbors_brute_force(x, y, radius);
+  const NeighborLists cells = find_neighbors_cell_list(x, y, radius);
+  const NeighborLists tree = find_neighbors_kdtree(x, y, radius);
+  EXPECT_GE(brute.pair_count(), min_pairs);
+  EXPECT_TRUE(cells == brute) << "cell list differs from brute force";
+  EXPECT_TRUE(tree == brute) << "k-d tree differs from brute force";
+}
+
+TEST(NeighborSearch, AgreeOnLattices) {
+  for (double l0 : {2e-3, 1e-3, 0.1}) {
+    std::vector<double> x, y;
+    for (int m = -7; m < 11; ++m)
+      for (int k = -3; k < 30; ++k) {
+        x.push_back((k + 0.5) * l0);
+        y.push_back((m + 0.5) * l0);
+      }
+    expect_all_searches_agree(x, y, 2.1 * l0, 12 * x.size() / 2);
+    // A radius exactly on a shell (2 l0): borderline pairs decided by one predicate.
+    expect_all_searches_agree(x, y, 2.0 * l0, 8 * x.size() / 2);
+  }
+}
+
+TEST(NeighborSearch, AgreeOnRandomClouds) {
+  std::mt19937_64 rng(42);
+  for (std::size_t n : {1u, 2u, 50u, 2000u}) {
+    std::uniform_real_distribution<double> u(-1.0, 3.0);
+    std::vector<double> x(n), y(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] = u(rng);
+      y[i] = 0.25 * u(rng);
+    }
+    expect_all_searches_agree(x, y, 0.1, 0);
+  }
+  // Duplicated points and a degenerate line.
+  std::vector<double> x = {0, 0, 0, 1e-3, 5}, y = {0, 0, 1e-3, 0, 0};
+  expect_all_searches_agree(x, y, 2e-3, 8);
+}
+
+TEST(BondTable, SameFromEverySearch) {
+  Simulation sim(testing::rod_case({"l0=0.001"}));
+  const ParticleStore& p = sim.particles();
+  const KernelConstants k = sim.state().bonds.constants;
+  const BondTable cells = build_bonds(p, k, NeighborMethod::cell_list);
+  const BondTable tree = build_bonds(p, k, NeighborMethod::kdtree);
+  EXPECT_EQ(cells.hash(), tree.hash());
+  EXPECT_EQ(cells.neighbor, tree.neighbor);
+  EXPECT_EQ(cells.spring_coef, tree.spring_coef);
+}
+
+}  // namespace
+}  // namespace mpsolid
