@@ -122,6 +122,33 @@ TEST(Loads, ImpulseEqualsForceTimesTimeBeforeTheWaveReachesTheWall) {
   }
 }
 
+TEST(Energy, SmallVibrationConservesKineticPlusStrainEnergy) {
+  // At strains of 1e-5 the paper model is conservative to first order
+  // (MODEL.md 4b), so KE + PE is constant up to O(strain) and O(dt). A
+  // wrong factor in PE or in a force term breaks this at order 1.
+  Simulation sim(testing::free_block_case(10, 8, true, 2.5e-8));
+  ParticleStore& p = sim.particles();
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {
+    p.vx[i] = 1e-3 * n(rng);
+    p.vy[i] = 1e-3 * n(rng);
+    p.omega[i] = 1.0 * n(rng);
+  }
+  const Diagnostics start = sim.diagnostics();
+  double low = start.kinetic_energy, high = start.kinetic_energy;
+  double max_pe = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    sim.advance(2000);
+    const Diagnostics d = sim.diagnostics();
+    low = std::min(low, d.kinetic_energy + d.strain_energy);
+    high = std::max(high, d.kinetic_energy + d.strain_energy);
+    max_pe = std::max(max_pe, d.strain_energy);
+  }
+  EXPECT_GT(max_pe, 0.2 * start.kinetic_energy);  // energy does change form
+  EXPECT_LT((high - low) / start.kinetic_energy, 1e-3);
+}
+
 TEST(Energy, BalanceHoldsOnTheRodCase) {
   // KE + PE - W is conserved only to first order by the paper model (MODEL.md
   // 4b); over 0.5 ms it stays within 1 % of W. A wrong factor in any term
