@@ -19,13 +19,23 @@ namespace {
 
 const std::vector<std::string> kModels = {"paper"};
 
+// Bond indices are 32-bit, with up to 12 (and a few spare) entries per particle.
+constexpr double kMaxParticles =
+    static_cast<double>(std::numeric_limits<std::uint32_t>::max() / 16);
+
 // Where a value came from: "file:line" or "--set key=value".
 std::string origin(const TomlValue& v, const std::string& file) {
   const auto loc = v.location();
   const std::string& name = loc.file_name();
   if (name.rfind("--set", 0) == 0) return name;
-  if (name == "unknown file") return file;
-  return fmt::format("{}:{}", name, loc.line());
+  if (name != "unknown file") return fmt::format("{}:{}", name, loc.line());
+  // A table made by an override has no location of its own: its entries do.
+  if (v.is_table())
+    for (const auto& [key, entry] : v.as_table()) {
+      const std::string inner = origin(entry, file);
+      if (inner != file) return inner;
+    }
+  return file;
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -75,29 +85,32 @@ class TableReader {
     return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
   }
 
-  double number(const TomlValue& v, const std::string& key) const {
+  double number(const TomlValue& v, const std::string& key, const std::string& what = "") const {
     if (!is_number(v))
-      fail(key, fmt::format("expected a number, got {} ({})", describe(v), type_name(v)));
+      fail(key, fmt::format("expected a number{}, got {} ({})", detail(what), describe(v),
+                            type_name(v)));
     const double x = as_number(v);
     if (!std::isfinite(x)) fail(key, fmt::format("expected a finite number, got {}", x));
     return x;
   }
 
   double number(const std::string& key, const std::string& what) {
-    return number(require(key, what), key);
+    return number(require(key, what), key, what);
   }
   double number_or(const std::string& key, double fallback) {
     const TomlValue* v = find(key);
     return v ? number(*v, key) : fallback;
   }
 
-  std::string string(const TomlValue& v, const std::string& key) const {
+  std::string string(const TomlValue& v, const std::string& key,
+                     const std::string& what = "") const {
     if (!v.is_string())
-      fail(key, fmt::format("expected a string, got {} ({})", describe(v), type_name(v)));
+      fail(key, fmt::format("expected a string{}, got {} ({})", detail(what), describe(v),
+                            type_name(v)));
     return v.as_string().str;
   }
   std::string string(const std::string& key, const std::string& what) {
-    return string(require(key, what), key);
+    return string(require(key, what), key, what);
   }
   std::string string_or(const std::string& key, const std::string& fallback) {
     const TomlValue* v = find(key);
@@ -140,6 +153,9 @@ class TableReader {
   const std::string& file() const { return file_; }
 
  private:
+  static std::string detail(const std::string& what) {
+    return what.empty() ? "" : " (" + what + ")";
+  }
   static std::string type_name(const TomlValue& v) {
     std::ostringstream s;
     s << v.type();
@@ -162,6 +178,12 @@ Kind parse_kind(TableReader& r, const std::string& key, const std::string& text)
 std::string format_number(double x) {
   return fmt::format("{:.17g}", x);
 }
+std::string quote(const std::string& text) {
+  return toml::format(TomlValue(text));
+}
+std::string key(const std::string& name) {
+  return toml::format_key(name);
+}
 
 // The case as the solver understood it: every default and override filled in,
 // derived figures as comments. It reads back as the same case.
@@ -170,23 +192,23 @@ std::string resolved_toml(const CaseSpec& c) {
       "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
       c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
   for (const auto& m : c.materials)
-    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", m.name,
+    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", key(m.name),
                        format_number(m.lambda()), format_number(m.mu()));
-  out += fmt::format("\nname = \"{}\"\nmodel = \"{}\"\nl0 = {}\ndepth = {}\n", c.name, c.model,
-                     format_number(c.l0), format_number(c.depth));
+  out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
+                     quote(c.model), format_number(c.l0), format_number(c.depth));
   for (const auto& m : c.materials)
-    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", m.name,
+    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", key(m.name),
                        format_number(m.youngs_modulus), format_number(m.poisson_ratio),
                        format_number(m.density));
   for (const auto& b : c.bodies)
     out += fmt::format(
-        "\n[bodies.{}]\nkind = \"{}\"\nmaterial = \"{}\"\nx = [{}, {}]\ny = [{}, {}]\n", b.name,
-        kind_name(b.kind), c.materials[static_cast<std::size_t>(b.material)].name,
+        "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\nx = [{}, {}]\ny = [{}, {}]\n", key(b.name),
+        kind_name(b.kind), quote(c.materials[static_cast<std::size_t>(b.material)].name),
         format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
   for (const auto& l : c.loads)
     out +=
-        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = \"{}\"\nforce = [{}, {}]\nstart = {}\n",
-                    l.name, c.bodies[static_cast<std::size_t>(l.body)].name,
+        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = {}\nforce = [{}, {}]\nstart = {}\n",
+                    key(l.name), quote(c.bodies[static_cast<std::size_t>(l.body)].name),
                     format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
   out += fmt::format("\n[time]\ndt = {}\nend = {}\n\n[output]\nframe_interval = {}\n",
                      format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
@@ -270,6 +292,13 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
       if (!(b.y[0] < b.y[1]))
         r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
       r.finish({"kind", "material", "x", "y"});
+      // Estimate in floating point first: integer lattice indices would
+      // overflow for an absurdly small l0.
+      const double estimate = ((b.x[1] - b.x[0]) / c.l0 + 1.0) * ((b.y[1] - b.y[0]) / c.l0 + 1.0);
+      if (!(estimate < kMaxParticles))
+        top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more than "
+                                   "this build supports ({} particles)",
+                                   c.l0, estimate, name, kMaxParticles));
       const std::int64_t sites =
           lattice_span(b.x[0], b.x[1], c.l0).count() * lattice_span(b.y[0], b.y[1], c.l0).count();
       if (sites == 0)
@@ -290,9 +319,10 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
               file, c.bodies[a].name, c.bodies[b].name, c.bodies[a].x[0], c.bodies[a].x[1],
               c.bodies[a].y[0], c.bodies[a].y[1], c.bodies[b].x[0], c.bodies[b].x[1],
               c.bodies[b].y[0], c.bodies[b].y[1]));
-    // Bond indices are 32-bit; about 13 entries per particle.
-    if (particle_total > (std::numeric_limits<std::uint32_t>::max() / 16))
-      top.fail("l0", fmt::format("{} particles is more than this build supports", particle_total));
+    if (static_cast<double>(particle_total) >= kMaxParticles)
+      top.fail("l0", fmt::format("l0 = {} m gives {} particles, more than this build supports ({} "
+                                 "particles)",
+                                 c.l0, particle_total, kMaxParticles));
   }
 
   // Loads.

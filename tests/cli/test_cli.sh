@@ -1,0 +1,332 @@
+#!/usr/bin/env bash
+# The mpsolid executable end to end: exit codes, clear errors, nothing written
+# on bad input, the outputs of a short good run, and that the resolved case
+# reproduces the run.
+#
+#   bash tests/cli/test_cli.sh PATH_TO_MPSOLID    (from the repository root)
+#
+# Prints "ok: ..." per passing check and "FAIL: ..." per failing one; exits
+# non-zero if any check failed.
+set -u
+
+if [[ $# -ne 1 ]]; then
+  echo "usage: bash tests/cli/test_cli.sh PATH_TO_MPSOLID" >&2
+  exit 2
+fi
+BIN=$(realpath -- "$1") || { echo "FAIL: no mpsolid binary at '$1'" >&2; exit 1; }
+if [[ ! -x "$BIN" ]]; then
+  echo "FAIL: '$BIN' is not an executable" >&2
+  exit 1
+fi
+cd "$(dirname -- "${BASH_SOURCE[0]}")/../.." || exit 1
+CASE=cases/shock_rod.toml
+[[ -f "$CASE" ]] || { echo "FAIL: $CASE not found (run from the repository root)" >&2; exit 1; }
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/mpsolid_cli.XXXXXX") || exit 1
+trap 'rm -rf -- "$TMP"' EXIT
+
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ok() { echo "ok: $*"; }
+
+# mp LABEL ARGS...: runs mpsolid with ARGS (stdin closed, stderr not a
+# terminal, a 5 minute cap); leaves the exit code in $rc and the output in
+# $TMP/LABEL.out and $TMP/LABEL.err.
+mp() {
+  local label=$1
+  shift
+  timeout 300 "$BIN" "$@" </dev/null >"$TMP/$label.out" 2>"$TMP/$label.err"
+  rc=$?
+}
+
+show() {  # the output of run LABEL, indented, for failure messages
+  echo "    stdout: $(head -c 2000 "$TMP/$1.out")"
+  echo "    stderr: $(head -c 2000 "$TMP/$1.err")"
+}
+
+# snapshot DIR: every file under DIR with its checksum, sorted.
+snapshot() {
+  (cd "$1" && find . -mindepth 1 -printf '%y %p\n' | sort && find . -type f -print0 | sort -z |
+    xargs -0 -r sha256sum)
+}
+
+# A folder that already holds a previous run's history.csv.
+SEEDED=$TMP/seeded
+mkdir -p "$SEEDED"
+printf 't,kinetic_energy\n0,0\n# known content from an earlier run\n' >"$SEEDED/history.csv"
+SEEDED_BEFORE=$(snapshot "$SEEDED")
+
+# expect_bad_input LABEL NEEDLE... -- ARGS...: mpsolid ARGS exits 2 with an
+# error on stderr containing every NEEDLE, prints nothing on stdout, and
+# leaves $SEEDED untouched (ARGS should point --out there).
+expect_bad_input() {
+  local label=$1
+  shift
+  local needles=()
+  while [[ $# -gt 0 && $1 != -- ]]; do
+    needles+=("$1")
+    shift
+  done
+  shift
+  mp "$label" "$@"
+  local good=1
+  if [[ $rc -ne 2 ]]; then
+    fail "$label: expected exit code 2, got $rc (mpsolid $*)"
+    show "$label"
+    good=0
+  fi
+  if [[ ! -s "$TMP/$label.err" ]]; then
+    fail "$label: nothing on stderr"
+    good=0
+  fi
+  local needle
+  for needle in "${needles[@]}"; do
+    if ! grep -qF -- "$needle" "$TMP/$label.err"; then
+      fail "$label: stderr does not contain '$needle'"
+      show "$label"
+      good=0
+    fi
+  done
+  if [[ -s "$TMP/$label.out" ]]; then
+    fail "$label: printed on stdout on bad input: $(head -c 500 "$TMP/$label.out")"
+    good=0
+  fi
+  if [[ "$(snapshot "$SEEDED")" != "$SEEDED_BEFORE" ]]; then
+    fail "$label: the --out folder changed on bad input:"
+    (cd "$SEEDED" && find . -mindepth 1 | sed 's/^/    /')
+    good=0
+    # Reset it for the next check.
+    rm -rf -- "$SEEDED"
+    mkdir -p "$SEEDED"
+    printf 't,kinetic_energy\n0,0\n# known content from an earlier run\n' >"$SEEDED/history.csv"
+  fi
+  # Again with --out naming a folder that does not exist: it is not created.
+  local args=() arg absent="$TMP/absent_${label//[^A-Za-z0-9_]/_}"
+  for arg in "$@"; do
+    [[ $arg == "$SEEDED" ]] && arg=$absent/out
+    args+=("$arg")
+  done
+  if [[ " ${args[*]} " == *" $absent/out "* ]]; then
+    mp "$label.absent" "${args[@]}"
+    if [[ $rc -ne 2 ]]; then
+      fail "$label: with a new --out folder: expected exit code 2, got $rc"
+      good=0
+    fi
+    if [[ -e "$absent" ]]; then
+      fail "$label: the --out folder $absent/out was created on bad input"
+      good=0
+    fi
+  fi
+  [[ $good -eq 1 ]] && ok "$label: exit 2, clear error, nothing written"
+}
+
+# ---- (a) a bad case ----------------------------------------------------------
+
+BAD=$TMP/bad_case.toml
+sed 's/^nu = 0\.495/nu = 0.7/' "$CASE" >"$BAD"
+if ! grep -q '^nu = 0\.7' "$BAD"; then
+  fail "could not make the bad case (no 'nu = 0.495' line in $CASE)"
+fi
+expect_bad_input bad_nu "mpsolid: error:" "$BAD" "materials.rubber.nu" "(-1, 0.5)" -- \
+  run "$BAD" --out "$SEEDED" --threads 2
+
+# The same into a folder that does not exist: it must not be created.
+ABSENT=$TMP/absent/out
+mp bad_nu_absent run "$BAD" --out "$ABSENT" --threads 2
+if [[ $rc -ne 2 ]]; then
+  fail "bad_nu_absent: expected exit code 2, got $rc"
+  show bad_nu_absent
+elif [[ -e "$TMP/absent" ]]; then
+  fail "bad_nu_absent: the --out folder (or its parent) was created on bad input"
+else
+  ok "bad_nu_absent: exit 2, --out folder not created"
+fi
+
+# Without --out the default folder out/<name> must not appear either.
+(cd "$TMP" && timeout 300 "$BIN" run "$BAD" </dev/null >/dev/null 2>&1)
+rc=$?
+if [[ $rc -ne 2 ]]; then
+  fail "bad_nu_default_out: expected exit code 2, got $rc"
+elif [[ -e "$TMP/out" ]]; then
+  fail "bad_nu_default_out: the default output folder $TMP/out was created on bad input"
+else
+  ok "bad_nu_default_out: exit 2, no default output folder"
+fi
+
+# Other bad cases, each a one-line change of the shipped case.
+bad_variant() {  # bad_variant LABEL SED_EXPR KEY NEEDLE...
+  local label=$1 expr=$2
+  shift 2
+  local file=$TMP/$label.toml
+  sed "$expr" "$CASE" >"$file"
+  if cmp -s "$file" "$CASE"; then
+    fail "$label: the sed edit '$expr' did not change the case"
+    return
+  fi
+  expect_bad_input "$label" "$file" "$@" -- run "$file" --out "$SEEDED" --threads 2
+}
+bad_variant unknown_key 's/^dt = 1\.0e-8 .*/&\ndtt = 1.0e-8/' "time.dtt" "unknown key"
+bad_variant overlap 's/^x = \[-0\.006, 0\.0\]/x = [-0.006, 0.001]/' "bodies.plate" "bodies.rod" \
+  "overlap"
+bad_variant load_on_wall 's/^body = "plate"/body = "wall"/' "loads.shock.body" "wall"
+bad_variant syntax 's/^E = 2\.8e6 .*/E = 2.8e6 Pa/' "syntax error"
+bad_variant end_before_dt 's/^end = 0\.010 .*/end = 1e-9/' "time.end" "[dt, inf)"
+
+# A missing case file.
+expect_bad_input missing_file "$TMP/no_such_case.toml" -- \
+  run "$TMP/no_such_case.toml" --out "$SEEDED"
+
+# A lattice far too fine for this build (l0 = 0.1 pm) is bad input, found
+# before anything is written.
+expect_bad_input too_fine_l0 "l0" -- \
+  run "$CASE" --set l0=1e-13 --set time.end=1e-8 --out "$SEEDED" --threads 2
+
+# ---- (b) bad command lines -----------------------------------------------------
+
+for set in "time.end" "=5" "time..end=1" "time.end="; do
+  expect_bad_input "malformed_set[$set]" "--set" "$set" -- \
+    run "$CASE" --set "$set" --out "$SEEDED" --threads 2
+done
+expect_bad_input set_wrong_type "--set" "time.dt=abc" "time.dt" -- \
+  run "$CASE" --set time.dt=abc --out "$SEEDED" --threads 2
+expect_bad_input set_under_value "--set" "l0.x=1" -- \
+  run "$CASE" --set l0.x=1 --out "$SEEDED" --threads 2
+expect_bad_input set_unknown_key "--set" "time.dtt" "unknown key" -- \
+  run "$CASE" --set time.dtt=1e-8 --out "$SEEDED" --threads 2
+expect_bad_input unknown_option "--bogus" -- run "$CASE" --bogus --out "$SEEDED"
+expect_bad_input unknown_subcommand -- walk "$CASE" --out "$SEEDED"
+expect_bad_input no_subcommand --
+expect_bad_input no_case_file -- run --out "$SEEDED"
+expect_bad_input zero_threads "--threads" -- run "$CASE" --threads 0 --out "$SEEDED"
+expect_bad_input bad_threads "--threads" -- run "$CASE" --threads many --out "$SEEDED"
+
+mp help --help
+if [[ $rc -ne 0 || ! -s "$TMP/help.out" ]]; then
+  fail "help: mpsolid --help should print usage and exit 0 (exit $rc)"
+else
+  ok "help: exit 0"
+fi
+
+# ---- (c) a short good run -------------------------------------------------------
+
+OUT=$TMP/good
+HEADER='t,kinetic_energy,strain_energy,external_work,momentum_x,momentum_y,angular_momentum,max_speed,plate.x,plate.y,plate.theta,rod.xmin,rod.xmax,rod.ymin,rod.ymax'
+mp good run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$OUT" --threads 2
+if [[ $rc -ne 0 ]]; then
+  fail "good: expected exit code 0, got $rc"
+  show good
+else
+  ok "good: exit 0"
+fi
+for f in history.csv frames.h5 case.resolved.toml run.json; do
+  if [[ -s "$OUT/$f" ]]; then ok "good: $f written"; else fail "good: $f missing or empty"; fi
+done
+if [[ -f "$OUT/history.csv" ]]; then
+  first=$(head -n 1 "$OUT/history.csv")
+  if [[ "$first" == "$HEADER"* ]]; then
+    ok "good: history.csv header"
+  else
+    fail "good: history.csv header is '$first', expected it to begin with '$HEADER'"
+  fi
+  rows=$(($(wc -l <"$OUT/history.csv") - 1))
+  if [[ $rows -eq 3 ]]; then
+    ok "good: history.csv has 3 data rows"
+  else
+    fail "good: history.csv has $rows data rows, expected 3 (t = 0, 1e-5, 2e-5)"
+  fi
+fi
+if [[ -f "$OUT/frames.h5" ]]; then
+  if [[ "$(head -c 8 "$OUT/frames.h5" | od -An -tx1 | tr -d ' \n')" == "894844460d0a1a0a" ]]; then
+    ok "good: frames.h5 is an HDF5 file"
+  else
+    fail "good: frames.h5 does not start with the HDF5 signature"
+  fi
+fi
+if [[ -f "$OUT/run.json" ]]; then
+  for key in '"steps_per_second"' '"particle_steps_per_second"'; do
+    if grep -qF -- "$key" "$OUT/run.json"; then
+      ok "good: run.json has $key"
+    else
+      fail "good: run.json lacks $key"
+    fi
+  done
+  if command -v python3 >/dev/null; then
+    if python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$OUT/run.json" 2>/dev/null; then
+      ok "good: run.json is valid JSON"
+    else
+      fail "good: run.json is not valid JSON"
+    fi
+  fi
+fi
+leftovers=$(find "$OUT" -name '*.tmp' 2>/dev/null)
+if [[ -n "$leftovers" ]]; then
+  fail "good: temporary files left behind: $leftovers"
+else
+  ok "good: no *.tmp files left"
+fi
+extra=$(cd "$OUT" 2>/dev/null && find . -mindepth 1 | sort |
+  grep -vxF -e ./history.csv -e ./frames.h5 -e ./case.resolved.toml -e ./run.json)
+if [[ -n "$extra" ]]; then
+  fail "good: unexpected files in the output folder: $extra"
+fi
+# stdout: only the closing summary (first line "mpsolid: ...", the rest
+# indented); stderr: nothing (no progress line: stderr is not a terminal).
+if [[ -s "$TMP/good.err" ]]; then
+  fail "good: stderr is not empty (progress or warnings when stderr is not a terminal): $(head -c 500 "$TMP/good.err")"
+else
+  ok "good: stderr is empty"
+fi
+if grep -q $'\r' "$TMP/good.out"; then
+  fail "good: stdout contains a carriage return (a progress line)"
+fi
+if [[ "$(head -n 1 "$TMP/good.out")" != "mpsolid: shock_rod "* ]] ||
+  tail -n +2 "$TMP/good.out" | grep -qv '^  '; then
+  fail "good: stdout is more than the closing summary:"
+  sed 's/^/    /' "$TMP/good.out"
+else
+  ok "good: stdout is just the summary"
+fi
+if ! grep -q "completed" "$TMP/good.out"; then
+  fail "good: the summary does not say the run completed"
+fi
+
+# ---- (d) the resolved case reproduces the run -----------------------------------
+
+AGAIN=$TMP/again
+if [[ -f "$OUT/case.resolved.toml" ]]; then
+  cp "$OUT/case.resolved.toml" "$TMP/resolved.toml"
+  mp again run "$TMP/resolved.toml" --out "$AGAIN" --threads 2
+  if [[ $rc -ne 0 ]]; then
+    fail "resolved: running case.resolved.toml exited $rc"
+    show again
+  elif cmp -s "$OUT/history.csv" "$AGAIN/history.csv"; then
+    ok "resolved: case.resolved.toml gives an identical history.csv"
+  else
+    fail "resolved: case.resolved.toml gives a different history.csv:"
+    diff "$OUT/history.csv" "$AGAIN/history.csv" | head -n 10 | sed 's/^/    /'
+  fi
+  if [[ -f "$AGAIN/case.resolved.toml" ]] &&
+    ! diff -q <(grep -v '^#' "$OUT/case.resolved.toml") \
+      <(grep -v '^#' "$AGAIN/case.resolved.toml") >/dev/null; then
+    fail "resolved: resolving the resolved case changes it"
+  fi
+fi
+
+# A good run into the seeded folder replaces the old history.csv.
+mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
+  --threads 2
+if [[ $rc -ne 0 ]]; then
+  fail "good_seeded: exit $rc"
+  show good_seeded
+elif ! cmp -s "$SEEDED/history.csv" "$OUT/history.csv"; then
+  fail "good_seeded: history.csv in a folder with an old one is not the new run's"
+else
+  ok "good_seeded: an old history.csv is replaced"
+fi
+
+echo
+if [[ $failures -gt 0 ]]; then
+  echo "test_cli: $failures check(s) FAILED"
+  exit 1
+fi
+echo "test_cli: all checks passed"

@@ -1,0 +1,584 @@
+// Every kind of bad input is an InputError whose message names the file, the
+// key (as a dotted path) and what is allowed; good input (the shipped cases,
+// --set overrides, the resolved TOML read back) is accepted as written.
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "src/case_reader.hpp"
+#include "src/types.hpp"
+
+namespace mpsolid {
+namespace {
+
+using Strings = std::vector<std::string>;
+
+std::string shipped(const std::string& name) {
+  return std::string(MPSOLID_SOURCE_DIR) + "/cases/" + name;
+}
+
+// A small valid case: the shipped rod case, written out so each bad case
+// below changes exactly one thing with `edit`. Bodies in name order: plate,
+// rod, wall.
+std::string base_toml() {
+  return R"(name = "base"
+model = "paper"
+l0 = 0.002
+depth = 1.0
+
+[materials.rubber]
+E = 2.8e6
+nu = 0.495
+rho = 1010.0
+
+[bodies.rod]
+kind = "elastic"
+material = "rubber"
+x = [0.0, 0.100]
+y = [-0.020, 0.020]
+
+[bodies.plate]
+kind = "rigid"
+material = "rubber"
+x = [-0.006, 0.0]
+y = [-0.030, 0.030]
+
+[bodies.wall]
+kind = "wall"
+material = "rubber"
+x = [0.100, 0.104]
+y = [-0.020, 0.020]
+
+[loads.shock]
+type = "step"
+body = "plate"
+force = [11200.0, 0.0]
+start = 0.0
+
+[time]
+dt = 1.0e-8
+end = 0.010
+
+[output]
+frame_interval = 1.0e-3
+)";
+}
+
+// `text` with the one occurrence of `from` replaced by `to`. The edit must
+// apply, else the test would silently check the valid base case.
+std::string edit(const std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos)
+    throw std::logic_error("edit: '" + from + "' does not occur exactly once in the base case");
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+std::string edit(const std::string& from, const std::string& to) {
+  return edit(base_toml(), from, to);
+}
+
+// The InputError message of parsing `text` as "bad.toml", or nothing if the
+// case was accepted. Any other exception fails the test.
+std::optional<std::string> error_of(const std::string& text, const Strings& overrides = {}) {
+  try {
+    parse_case(text, "bad.toml", overrides);
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected mpsolid::InputError, got another exception: " << e.what();
+    return std::string();
+  }
+  return std::nullopt;
+}
+
+// Asserts an InputError whose message contains every one of `needles`.
+void expect_error(const std::string& text, const Strings& needles, const Strings& overrides = {}) {
+  const auto message = error_of(text, overrides);
+  ASSERT_TRUE(message.has_value()) << "the case was accepted; expected an InputError";
+  for (const auto& needle : needles)
+    EXPECT_NE(message->find(needle), std::string::npos)
+        << "the message does not contain \"" << needle << "\"; the message is:\n"
+        << *message;
+}
+
+#define EXPECT_INPUT_ERROR(text, ...) \
+  do {                                \
+    SCOPED_TRACE(#text);              \
+    expect_error(text, __VA_ARGS__);  \
+  } while (0)
+
+TEST(CaseErrors, TheBaseCaseIsValid) {
+  const CaseSpec spec = parse_case(base_toml(), "bad.toml");
+  EXPECT_EQ(spec.name, "base");
+  ASSERT_EQ(spec.bodies.size(), 3u);
+  ASSERT_EQ(spec.loads.size(), 1u);
+}
+
+// ---- unknown keys -----------------------------------------------------------
+
+TEST(CaseErrors, UnknownKeyInATable) {
+  EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = 1.0e-8\ndtt = 1e-8"),
+                     {"bad.toml", "time.dtt", "unknown key", "dt, end"});
+}
+
+TEST(CaseErrors, UnknownKeyAtTopLevel) {
+  EXPECT_INPUT_ERROR(edit("depth = 1.0", "depht = 1.0"),
+                     {"bad.toml", "depht", "unknown key", "depth", "model", "l0"});
+}
+
+TEST(CaseErrors, UnknownTableAtTopLevel) {
+  EXPECT_INPUT_ERROR(edit("[output]", "[outputs]"),
+                     {"bad.toml", "outputs", "unknown key", "output"});
+}
+
+TEST(CaseErrors, UnknownKeyInAMaterialBodyAndLoad) {
+  EXPECT_INPUT_ERROR(edit("rho = 1010.0", "rho = 1010.0\nG = 1.0"),
+                     {"bad.toml", "materials.rubber.G", "unknown key", "E, nu, rho"});
+  EXPECT_INPUT_ERROR(edit("kind = \"elastic\"", "kind = \"elastic\"\nz = [0.0, 1.0]"),
+                     {"bad.toml", "bodies.rod.z", "unknown key", "kind, material, x, y"});
+  EXPECT_INPUT_ERROR(edit("start = 0.0", "start = 0.0\nend = 1.0"),
+                     {"bad.toml", "loads.shock.end", "unknown key", "type, body, force, start"});
+}
+
+TEST(CaseErrors, UnknownKeyReportsTheLine) {
+  // [time] dt is on line 36 of the base case, so the inserted dtt is on line 37.
+  EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = 1.0e-8\ndtt = 1e-8"), {"bad.toml:37"});
+}
+
+// ---- wrong types ------------------------------------------------------------
+
+TEST(CaseErrors, StringWhereANumberIsExpected) {
+  EXPECT_INPUT_ERROR(edit("E = 2.8e6", "E = \"2.8e6\""),
+                     {"bad.toml", "materials.rubber.E", "expected a number"});
+  EXPECT_INPUT_ERROR(edit("l0 = 0.002", "l0 = \"2 mm\""), {"bad.toml", "l0", "expected a number"});
+  EXPECT_INPUT_ERROR(edit("end = 0.010", "end = true"),
+                     {"bad.toml", "time.end", "expected a number"});
+}
+
+TEST(CaseErrors, NumberWhereAStringIsExpected) {
+  EXPECT_INPUT_ERROR(edit("model = \"paper\"", "model = 1"),
+                     {"bad.toml", "model", "expected a string"});
+  EXPECT_INPUT_ERROR(edit("body = \"plate\"", "body = 2"),
+                     {"bad.toml", "loads.shock.body", "expected a string"});
+  EXPECT_INPUT_ERROR(edit("kind = \"elastic\"", "kind = 3"),
+                     {"bad.toml", "bodies.rod.kind", "expected a string"});
+}
+
+TEST(CaseErrors, NumberWhereABodyKindIsExpectedListsTheKinds) {
+  // What is allowed for `kind` is one of three words, not just "a string".
+  EXPECT_INPUT_ERROR(edit("kind = \"elastic\"", "kind = 3"),
+                     {"bad.toml", "bodies.rod.kind", "elastic", "rigid", "wall"});
+}
+
+TEST(CaseErrors, BadRangePairs) {
+  EXPECT_INPUT_ERROR(edit("x = [0.0, 0.100]", "x = [0.0, 0.05, 0.100]"),
+                     {"bad.toml", "bodies.rod.x", "two numbers"});
+  EXPECT_INPUT_ERROR(edit("x = [0.0, 0.100]", "x = 0.1"),
+                     {"bad.toml", "bodies.rod.x", "two numbers"});
+  EXPECT_INPUT_ERROR(edit("force = [11200.0, 0.0]", "force = [11200.0, \"0\"]"),
+                     {"bad.toml", "loads.shock.force", "two numbers"});
+}
+
+TEST(CaseErrors, NonFiniteNumbers) {
+  EXPECT_INPUT_ERROR(edit("E = 2.8e6", "E = inf"), {"bad.toml", "materials.rubber.E", "finite"});
+  EXPECT_INPUT_ERROR(edit("nu = 0.495", "nu = nan"), {"bad.toml", "materials.rubber.nu", "finite"});
+}
+
+TEST(CaseErrors, MissingRequiredKeys) {
+  EXPECT_INPUT_ERROR(edit("l0 = 0.002\n", ""), {"bad.toml", "l0", "missing"});
+  EXPECT_INPUT_ERROR(edit("nu = 0.495\n", ""), {"bad.toml", "materials.rubber.nu", "missing"});
+  EXPECT_INPUT_ERROR(edit("[time]\ndt = 1.0e-8\nend = 0.010\n", ""),
+                     {"bad.toml", "time", "missing"});
+}
+
+// ---- values out of range ----------------------------------------------------
+
+TEST(CaseErrors, YoungsModulusMustBePositive) {
+  for (const char* bad : {"E = 0.0", "E = -2.8e6", "E = 0"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("E = 2.8e6", bad), {"bad.toml", "materials.rubber.E", "(0, inf)"});
+  }
+}
+
+TEST(CaseErrors, PoissonRatioMustBeInsideMinusOneToHalf) {
+  for (const char* bad : {"nu = 0.5", "nu = -1.0", "nu = 0.7", "nu = -1.5"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("nu = 0.495", bad), {"bad.toml", "materials.rubber.nu", "(-1, 0.5)"});
+  }
+  // Just inside is fine.
+  EXPECT_FALSE(error_of(edit("nu = 0.495", "nu = 0.4999")).has_value());
+  EXPECT_FALSE(error_of(edit("nu = 0.495", "nu = -0.999")).has_value());
+}
+
+TEST(CaseErrors, DensityMustBePositive) {
+  for (const char* bad : {"rho = 0.0", "rho = -1010.0"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("rho = 1010.0", bad), {"bad.toml", "materials.rubber.rho", "(0, inf)"});
+  }
+}
+
+TEST(CaseErrors, TimeStepMustBePositive) {
+  for (const char* bad : {"dt = 0.0", "dt = -1.0e-8"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("dt = 1.0e-8", bad), {"bad.toml", "time.dt", "(0, inf)"});
+  }
+}
+
+TEST(CaseErrors, EndMustBeAtLeastOneStep) {
+  expect_error(edit("end = 0.010", "end = 5.0e-9"), {"bad.toml", "time.end", "[dt, inf)"});
+  expect_error(edit("end = 0.010", "end = -1.0"), {"bad.toml", "time.end", "[dt, inf)"});
+  EXPECT_FALSE(error_of(edit("end = 0.010", "end = 1.0e-8")).has_value());
+}
+
+TEST(CaseErrors, LatticeSpacingMustBePositive) {
+  for (const char* bad : {"l0 = 0.0", "l0 = -0.002"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("l0 = 0.002", bad), {"bad.toml", "l0:", "(0, inf)"});
+  }
+}
+
+TEST(CaseErrors, TooFineALatticeIsRejected) {
+  // Far more particles than the 32-bit bond indices allow, at several scales
+  // (from 1e-11 on, nx * ny overflows a 64-bit site count, and from about
+  // 1e-20 on, x / l0 overflows the int64 lattice index, if not guarded).
+  for (const char* bad : {"l0 = 1e-6", "l0 = 1e-12", "l0 = 1e-13", "l0 = 1e-14", "l0 = 1e-15",
+                          "l0 = 1e-18", "l0 = 1e-20", "l0 = 1e-300"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("l0 = 0.002", bad), {"bad.toml", "l0", "particles"});
+  }
+}
+
+TEST(CaseErrors, DepthMustBePositive) {
+  for (const char* bad : {"depth = 0.0", "depth = -1.0"}) {
+    SCOPED_TRACE(bad);
+    expect_error(edit("depth = 1.0", bad), {"bad.toml", "depth", "(0, inf)"});
+  }
+}
+
+TEST(CaseErrors, FrameIntervalMustBeAtLeastOneStep) {
+  EXPECT_INPUT_ERROR(edit("frame_interval = 1.0e-3", "frame_interval = 5.0e-9"),
+                     {"bad.toml", "output.frame_interval", "[dt, inf)"});
+  EXPECT_INPUT_ERROR(edit("frame_interval = 1.0e-3", "frame_interval = 0.0"),
+                     {"bad.toml", "output.frame_interval", "[dt, inf)"});
+}
+
+TEST(CaseErrors, LoadStartMustNotBeNegative) {
+  EXPECT_INPUT_ERROR(edit("start = 0.0", "start = -1.0e-3"),
+                     {"bad.toml", "loads.shock.start", "[0, inf)"});
+}
+
+TEST(CaseErrors, NameMustBeAPlainName) {
+  EXPECT_INPUT_ERROR(edit("name = \"base\"", "name = \"a/b\""), {"bad.toml", "name", "'/'"});
+  EXPECT_INPUT_ERROR(edit("name = \"base\"", "name = \"\""), {"bad.toml", "name", "non-empty"});
+}
+
+// ---- geometry ---------------------------------------------------------------
+
+TEST(CaseErrors, OverlappingBodiesNameBoth) {
+  // The plate reaches 1 mm into the rod.
+  EXPECT_INPUT_ERROR(edit("x = [-0.006, 0.0]", "x = [-0.006, 0.001]"),
+                     {"bad.toml", "bodies.plate", "bodies.rod", "overlap", "touch"});
+}
+
+TEST(CaseErrors, TouchingBodiesAreFine) {
+  EXPECT_FALSE(error_of(base_toml()).has_value());  // plate|rod|wall share edges
+}
+
+TEST(CaseErrors, EmptyBody) {
+  // No site centre (k + 1/2) * 2 mm lies in [201.2, 201.8) mm.
+  const std::string text = base_toml() +
+                           "\n[bodies.speck]\nkind = \"rigid\"\nmaterial = \"rubber\"\n"
+                           "x = [0.2012, 0.2018]\ny = [0.2012, 0.2018]\n";
+  EXPECT_INPUT_ERROR(text, {"bad.toml", "bodies.speck", "empty", "(k + 1/2) l0"});
+}
+
+TEST(CaseErrors, RangeBoundsOutOfOrder) {
+  EXPECT_INPUT_ERROR(edit("x = [0.0, 0.100]", "x = [0.100, 0.0]"),
+                     {"bad.toml", "bodies.rod.x", "x0 < x1"});
+  EXPECT_INPUT_ERROR(edit("x = [0.0, 0.100]", "x = [0.05, 0.05]"),
+                     {"bad.toml", "bodies.rod.x", "x0 < x1"});
+  EXPECT_INPUT_ERROR(
+      edit("y = [-0.020, 0.020]\n\n[bodies.plate]", "y = [0.020, -0.020]\n\n[bodies.plate]"),
+      {"bad.toml", "bodies.rod.y", "y0 < y1"});
+}
+
+// ---- references between tables ---------------------------------------------
+
+TEST(CaseErrors, LoadOnAMissingBody) {
+  EXPECT_INPUT_ERROR(edit("body = \"plate\"", "body = \"plat\""),
+                     {"bad.toml", "loads.shock.body", "plat", "plate, rod, wall"});
+}
+
+TEST(CaseErrors, LoadOnAWall) {
+  EXPECT_INPUT_ERROR(edit("body = \"plate\"", "body = \"wall\""),
+                     {"bad.toml", "loads.shock.body", "wall", "walls do not move"});
+}
+
+TEST(CaseErrors, BodyWithAnUnknownMaterial) {
+  EXPECT_INPUT_ERROR(
+      edit("kind = \"elastic\"\nmaterial = \"rubber\"", "kind = \"elastic\"\nmaterial = \"steel\""),
+      {"bad.toml", "bodies.rod.material", "steel", "defined: rubber"});
+}
+
+TEST(CaseErrors, UnknownBodyKind) {
+  EXPECT_INPUT_ERROR(edit("kind = \"elastic\"", "kind = \"plastic\""),
+                     {"bad.toml", "bodies.rod.kind", "plastic", "elastic, rigid, wall"});
+}
+
+TEST(CaseErrors, UnknownModel) {
+  EXPECT_INPUT_ERROR(edit("model = \"paper\"", "model = \"papr\""),
+                     {"bad.toml", "model", "papr", "allowed: paper"});
+}
+
+TEST(CaseErrors, UnknownLoadType) {
+  EXPECT_INPUT_ERROR(edit("type = \"step\"", "type = \"ramp\""),
+                     {"bad.toml", "loads.shock.type", "ramp", "allowed: step"});
+}
+
+// ---- syntax and files -------------------------------------------------------
+
+TEST(CaseErrors, TomlSyntaxErrorHasTheLine) {
+  // Line 8 of the base case: "nu = 0.495" becomes "nu = 0.495 0.4".
+  const auto message = error_of(edit("nu = 0.495", "nu = 0.495 0.4"));
+  ASSERT_TRUE(message.has_value());
+  EXPECT_NE(message->find("bad.toml"), std::string::npos) << *message;
+  EXPECT_NE(message->find("syntax error"), std::string::npos) << *message;
+  // The line number: "bad.toml:8" or toml11's " 8 | nu = ..." excerpt.
+  EXPECT_TRUE(std::regex_search(*message, std::regex(R"((bad\.toml:8\b)|(\b8 *\|))")))
+      << "no line number 8 in:\n"
+      << *message;
+}
+
+TEST(CaseErrors, TomlSyntaxErrors) {
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"rho = 1010.0", "rho = "},              // no value
+           {"[time]", "[time"},                     // unclosed header
+           {"E = 2.8e6", "E = 2.8e6\nE = 2.9e6"},   // duplicate key
+           {"x = [0.0, 0.100]", "x = [0.0, 0.100"}  // unclosed array
+       }) {
+    SCOPED_TRACE(to);
+    expect_error(edit(from, to), {"bad.toml", "syntax error"});
+  }
+}
+
+TEST(CaseErrors, MissingFileNamesThePath) {
+  const std::string path = std::string(MPSOLID_SOURCE_DIR) + "/cases/no_such_case.toml";
+  try {
+    read_case(path);
+    FAIL() << "read_case accepted a missing file";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("no such file"), std::string::npos) << message;
+  }
+}
+
+TEST(CaseErrors, DirectoryInsteadOfAFile) {
+  const std::string path = std::string(MPSOLID_SOURCE_DIR) + "/cases";
+  try {
+    read_case(path);
+    FAIL() << "read_case accepted a directory";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+// ---- --set overrides --------------------------------------------------------
+
+TEST(OverrideErrors, MalformedSet) {
+  for (const char* bad : {"time.end", "=5", "time.end="}) {
+    SCOPED_TRACE(bad);
+    expect_error(base_toml(), {"--set", std::string("'") + bad + "'", "KEY=VALUE"}, {bad});
+  }
+  for (const char* bad : {"time..end=1", ".end=1", "time.=1", "time end=1"}) {
+    SCOPED_TRACE(bad);
+    expect_error(base_toml(), {"--set", std::string("'") + bad + "'", "dotted path"}, {bad});
+  }
+}
+
+TEST(OverrideErrors, WrongValueTypeMentionsTheSet) {
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "time.dt=abc", "time.dt", "expected a number"},
+                     {"time.dt=abc"});
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "model=3", "model", "expected a string"}, {"model=3"});
+}
+
+TEST(OverrideErrors, OutOfRangeValueMentionsTheSet) {
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "materials.rubber.nu", "(-1, 0.5)"},
+                     {"materials.rubber.nu=0.7"});
+}
+
+TEST(OverrideErrors, UnknownKeyMentionsTheSet) {
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "time.dtt", "unknown key", "dt, end"},
+                     {"time.dtt=1e-8"});
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "tmie", "unknown key"}, {"tmie.end=1"});
+}
+
+TEST(OverrideErrors, KeyUnderAValue) {
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "l0.x=1", "'l0' is a value"}, {"l0.x=1"});
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "'x' is a value"}, {"bodies.rod.x.0=1"});
+}
+
+// ---- good input -------------------------------------------------------------
+
+TEST(GoodCases, ShippedCasesParse) {
+  const CaseSpec rod = read_case(shipped("shock_rod.toml"));
+  EXPECT_EQ(rod.name, "shock_rod");
+  EXPECT_EQ(rod.model, "paper");
+  EXPECT_DOUBLE_EQ(rod.l0, 0.002);
+  ASSERT_EQ(rod.bodies.size(), 3u);
+  ASSERT_EQ(rod.loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(rod.loads[0].force[0], 11200.0);
+  EXPECT_EQ(rod.step_count(), 1000000);
+  EXPECT_EQ(rod.steps_per_frame(), 100000);
+
+  const CaseSpec strong = read_case(shipped("shock_rod_55kN.toml"));
+  EXPECT_EQ(strong.name, "shock_rod_55kN");
+  ASSERT_EQ(strong.loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(strong.loads[0].force[0], 55900.0);
+  EXPECT_EQ(strong.step_count(), 1000000);
+  EXPECT_EQ(strong.steps_per_frame(), 100000);
+}
+
+TEST(GoodCases, OverridesApply) {
+  const CaseSpec fine = read_case(shipped("shock_rod.toml"), {"l0=0.001"});
+  EXPECT_DOUBLE_EQ(fine.l0, 0.001);
+
+  const CaseSpec shorter = read_case(shipped("shock_rod.toml"), {"time.end=0.002"});
+  EXPECT_DOUBLE_EQ(shorter.end, 0.002);
+  EXPECT_EQ(shorter.step_count(), 200000);
+
+  const CaseSpec bare = read_case(shipped("shock_rod.toml"), {"model=paper"});
+  EXPECT_EQ(bare.model, "paper");
+
+  const CaseSpec strong =
+      read_case(shipped("shock_rod.toml"), {"loads.shock.force=[55900.0, 0.0]"});
+  ASSERT_EQ(strong.loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(strong.loads[0].force[0], 55900.0);
+  EXPECT_DOUBLE_EQ(strong.loads[0].force[1], 0.0);
+
+  // Several at once; the last one of a key wins.
+  const CaseSpec several =
+      read_case(shipped("shock_rod.toml"),
+                {"time.end=0.002", "output.frame_interval=1e-4", "time.end=0.003"});
+  EXPECT_DOUBLE_EQ(several.end, 0.003);
+  EXPECT_DOUBLE_EQ(several.frame_interval, 1e-4);
+}
+
+TEST(GoodCases, OverrideCreatesAMissingTable) {
+  const std::string text = edit("[output]\nframe_interval = 1.0e-3\n", "");
+  const CaseSpec spec = parse_case(text, "bad.toml", {"output.frame_interval=2e-3"});
+  EXPECT_DOUBLE_EQ(spec.frame_interval, 2e-3);
+}
+
+TEST(GoodCases, IntegersAreAcceptedForNumbers) {
+  const CaseSpec spec = read_case(shipped("shock_rod.toml"), {"time.end=1"});
+  EXPECT_DOUBLE_EQ(spec.end, 1.0);
+  const CaseSpec ints = parse_case(
+      edit(edit("E = 2.8e6", "E = 2800000"), "force = [11200.0, 0.0]", "force = [11200, 0]"),
+      "bad.toml");
+  EXPECT_DOUBLE_EQ(ints.materials.at(0).youngs_modulus, 2.8e6);
+  EXPECT_DOUBLE_EQ(ints.loads.at(0).force[0], 11200.0);
+}
+
+TEST(GoodCases, DefaultsFillIn) {
+  // No depth, no model, no [output], no load start, no load type.
+  std::string text = edit("model = \"paper\"\n", "");
+  text = edit(text, "depth = 1.0\n", "");
+  text = edit(text, "[output]\nframe_interval = 1.0e-3\n", "");
+  text = edit(text, "start = 0.0\n", "");
+  text = edit(text, "type = \"step\"\n", "");
+  const CaseSpec spec = parse_case(text, "bad.toml");
+  EXPECT_EQ(spec.model, "paper");
+  EXPECT_DOUBLE_EQ(spec.depth, 1.0);
+  EXPECT_DOUBLE_EQ(spec.frame_interval, spec.end / 10);
+  EXPECT_DOUBLE_EQ(spec.loads.at(0).start, 0.0);
+}
+
+TEST(GoodCases, NameDefaultsToTheFileStem) {
+  const CaseSpec spec = parse_case(edit("name = \"base\"\n", ""), "some/dir/my_case.toml");
+  EXPECT_EQ(spec.name, "my_case");
+}
+
+void expect_same_case(const CaseSpec& a, const CaseSpec& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.model, b.model);
+  EXPECT_EQ(a.l0, b.l0);
+  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_EQ(a.dt, b.dt);
+  EXPECT_EQ(a.end, b.end);
+  EXPECT_EQ(a.frame_interval, b.frame_interval);
+  EXPECT_EQ(a.step_count(), b.step_count());
+  EXPECT_EQ(a.steps_per_frame(), b.steps_per_frame());
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (std::size_t k = 0; k < a.materials.size(); ++k) {
+    EXPECT_EQ(a.materials[k].name, b.materials[k].name);
+    EXPECT_EQ(a.materials[k].youngs_modulus, b.materials[k].youngs_modulus);
+    EXPECT_EQ(a.materials[k].poisson_ratio, b.materials[k].poisson_ratio);
+    EXPECT_EQ(a.materials[k].density, b.materials[k].density);
+  }
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+    SCOPED_TRACE(a.bodies[k].name);
+    EXPECT_EQ(a.bodies[k].name, b.bodies[k].name);
+    EXPECT_EQ(a.bodies[k].kind, b.bodies[k].kind);
+    EXPECT_EQ(a.bodies[k].material, b.bodies[k].material);
+    for (int e = 0; e < 2; ++e) {
+      EXPECT_EQ(a.bodies[k].x[e], b.bodies[k].x[e]);
+      EXPECT_EQ(a.bodies[k].y[e], b.bodies[k].y[e]);
+    }
+  }
+  ASSERT_EQ(a.loads.size(), b.loads.size());
+  for (std::size_t k = 0; k < a.loads.size(); ++k) {
+    EXPECT_EQ(a.loads[k].name, b.loads[k].name);
+    EXPECT_EQ(a.loads[k].body, b.loads[k].body);
+    EXPECT_EQ(a.loads[k].force[0], b.loads[k].force[0]);
+    EXPECT_EQ(a.loads[k].force[1], b.loads[k].force[1]);
+    EXPECT_EQ(a.loads[k].start, b.loads[k].start);
+  }
+}
+
+TEST(GoodCases, ResolvedTomlReadsBackAsTheSameCase) {
+  for (const Strings& overrides :
+       {Strings{}, Strings{"l0=0.001", "time.end=0.002", "loads.shock.force=[55900.0, 0.0]"},
+        Strings{"time.dt=3e-9", "depth=0.01"}}) {
+    SCOPED_TRACE(overrides.empty() ? std::string("no overrides") : overrides.front());
+    const CaseSpec original = read_case(shipped("shock_rod.toml"), overrides);
+    const CaseSpec again = parse_case(original.resolved_toml, "case.resolved.toml");
+    expect_same_case(original, again);
+    // Resolving is idempotent.
+    EXPECT_EQ(parse_case(again.resolved_toml, "case.resolved.toml").resolved_toml,
+              again.resolved_toml);
+  }
+}
+
+TEST(GoodCases, ResolvedTomlReadsBackWithUnusualNames) {
+  // TOML allows any quoted key and any string; the reader must either refuse
+  // such names with an InputError or write a resolved TOML that reads back.
+  std::string text = edit("name = \"base\"", "name = \"my \\\"quoted\\\" case\"");
+  text = edit(text, "[bodies.rod]", "[bodies.\"the rod\"]");
+  text = edit(text, "[materials.rubber]", "[materials.\"rubber.soft\"]");
+  for (const char* from : {"material = \"rubber\"\nx = [0.0", "material = \"rubber\"\nx = [-0.006",
+                           "material = \"rubber\"\nx = [0.100"})
+    text = edit(text, from, edit(from, "\"rubber\"", "\"rubber.soft\""));
+  CaseSpec original;
+  try {
+    original = parse_case(text, "odd.toml");
+  } catch (const InputError& e) {
+    SUCCEED() << "refused: " << e.what();
+    return;
+  }
+  try {
+    const CaseSpec again = parse_case(original.resolved_toml, "case.resolved.toml");
+    expect_same_case(original, again);
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "the case was accepted but its resolved TOML does not read back: " << e.what()
+                  << "\nresolved TOML:\n"
+                  << original.resolved_toml;
+  }
+}
+
+}  // namespace
+}  // namespace mpsolid
