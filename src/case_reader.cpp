@@ -12,12 +12,11 @@
 
 #include "src/case_overrides.hpp"
 #include "src/geometry.hpp"
+#include "src/models.hpp"
 
 namespace mpsolid {
 
 namespace {
-
-const std::vector<std::string> kModels = {"paper"};
 
 // Bond indices are 32-bit, with up to 12 (and a few spare) entries per particle.
 constexpr double kMaxParticles =
@@ -212,6 +211,13 @@ std::string resolved_toml(const CaseSpec& c) {
                     format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
   out += fmt::format("\n[time]\ndt = {}\nend = {}\n\n[output]\nframe_interval = {}\n",
                      format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
+  out +=
+      fmt::format("\n[finite_strain]\nhourglass = {}\n", format_number(c.model_options.hourglass));
+  out += fmt::format(
+      "\n[stability]\ncheck_interval = {}\nmax_speed = {}\nmin_jacobian = {}\nenergy_tolerance = "
+      "{}\n",
+      c.stability.check_interval, format_number(c.stability.max_speed),
+      format_number(c.model_options.min_jacobian), format_number(c.stability.energy_tolerance));
   return out;
 }
 
@@ -229,8 +235,9 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   if (c.name.empty() || c.name.find('/') != std::string::npos)
     top.fail("name", "must be a non-empty name without '/'");
   c.model = top.string_or("model", "paper");
-  if (std::find(kModels.begin(), kModels.end(), c.model) == kModels.end())
-    top.fail("model", fmt::format("unknown model '{}' (allowed: {})", c.model, join(kModels)));
+  const auto& models = model_names();
+  if (std::find(models.begin(), models.end(), c.model) == models.end())
+    top.fail("model", fmt::format("unknown model '{}' (allowed: {})", c.model, join(models)));
   c.l0 = top.number("l0", "the lattice spacing in m");
   top.range_check("l0", c.l0, c.l0 > 0, "(0, inf) m");
   c.depth = top.number_or("depth", 1.0);
@@ -377,7 +384,38 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     r.finish({"frame_interval"});
   }
 
-  top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "time", "output"});
+  // Model options.
+  if (const TomlValue* table = top.subtable_or_null("finite_strain")) {
+    TableReader r(*table, "finite_strain", file);
+    c.model_options.hourglass = r.number_or("hourglass", c.model_options.hourglass);
+    r.range_check("hourglass", c.model_options.hourglass, c.model_options.hourglass >= 0,
+                  "[0, inf) (0 switches the penalty off)");
+    r.finish({"hourglass"});
+  }
+
+  // Blow-up checks.
+  if (const TomlValue* table = top.subtable_or_null("stability")) {
+    TableReader r(*table, "stability", file);
+    const double interval =
+        r.number_or("check_interval", static_cast<double>(c.stability.check_interval));
+    r.range_check("check_interval", interval,
+                  interval >= 1 && interval <= 1e12 && interval == std::floor(interval),
+                  "a whole number of steps in [1, 1e12]");
+    c.stability.check_interval = static_cast<std::int64_t>(interval);
+    c.stability.max_speed = r.number_or("max_speed", c.stability.max_speed);
+    r.range_check("max_speed", c.stability.max_speed, c.stability.max_speed > 0,
+                  "(0, inf) dilatational wave speeds");
+    c.model_options.min_jacobian = r.number_or("min_jacobian", c.model_options.min_jacobian);
+    r.range_check("min_jacobian", c.model_options.min_jacobian,
+                  c.model_options.min_jacobian >= 0 && c.model_options.min_jacobian < 1, "[0, 1)");
+    c.stability.energy_tolerance = r.number_or("energy_tolerance", c.stability.energy_tolerance);
+    r.range_check("energy_tolerance", c.stability.energy_tolerance,
+                  c.stability.energy_tolerance > 0, "(0, inf)");
+    r.finish({"check_interval", "max_speed", "min_jacobian", "energy_tolerance"});
+  }
+
+  top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "time", "output",
+              "finite_strain", "stability"});
   c.resolved_toml = resolved_toml(c);
   return c;
 }

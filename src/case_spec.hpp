@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/model_common.hpp"
 #include "src/material.hpp"
 #include "src/types.hpp"
 
@@ -27,6 +28,13 @@ struct LoadSpec {
   double start = 0;
 };
 
+// Blow-up checks, run every `check_interval` steps.
+struct StabilitySpec {
+  std::int64_t check_interval = 500;  // steps
+  double max_speed = 1.0;             // in units of the largest dilatational wave speed
+  double energy_tolerance = 0.1;      // |KE + PE - W - E0| / max(W, E0)
+};
+
 struct CaseSpec {
   std::string name;    // output folder name (default: the file's stem)
   std::string source;  // the case file it came from
@@ -39,6 +47,8 @@ struct CaseSpec {
   double dt = 0;
   double end = 0;
   double frame_interval = 0;
+  ModelOptions model_options;  // hourglass (finite_strain) and min_jacobian (stability)
+  StabilitySpec stability;
   std::string resolved_toml;  // the case with every default and override filled in
 
   std::int64_t step_count() const;       // steps to reach `end`

@@ -1,30 +1,23 @@
 #pragma once
-// The bond models a case can choose. Each model is a type with the same
-// static interface (compute_strain, compute_forces, particle_strain_energy,
-// uses_rotation); the time step is written once as a template over it.
+// The bond models a case can choose (`model = ...`). Each is a type with the
+// same interface (compute_strain, compute_forces, particle_strain_energy,
+// check_integrity, uses_rotation); the time step is written once as a
+// template over it, and a run dispatches once per call.
 #include <string>
+#include <variant>
+#include <vector>
 
+#include "kernels/finite_strain_model.hpp"
 #include "kernels/paper_model.hpp"
-#include "src/types.hpp"
 
 namespace mpsolid {
 
-enum class ModelKind { paper };
+using AnyModel = std::variant<PaperModel, PaperConservativeModel, FiniteStrainModel>;
 
-inline ModelKind model_kind(const std::string& name) {
-  if (name == "paper") return ModelKind::paper;
-  throw InputError("unknown model '" + name + "'");
-}
+// The names accepted by `model = ...`, in variant order.
+const std::vector<std::string>& model_names();
 
-// Calls f(Model{}) with the model type selected at run time; the whole time
-// loop is instantiated per model, so the dispatch happens once per call.
-template <class F>
-decltype(auto) with_model(ModelKind kind, F&& f) {
-  switch (kind) {
-    case ModelKind::paper:
-      break;
-  }
-  return f(PaperModel{});
-}
+AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
+                    const ModelOptions& options);
 
 }  // namespace mpsolid

@@ -13,13 +13,47 @@
 #include "src/progress.hpp"
 #include "src/run_report.hpp"
 #include "src/simulation.hpp"
+#include "src/state_snapshot.hpp"
 
 namespace mpsolid {
 
 namespace {
-bool finite(const Diagnostics& d) {
-  return std::isfinite(d.kinetic_energy) && std::isfinite(d.strain_energy) &&
-         std::isfinite(d.max_speed) && std::isfinite(d.angular_momentum);
+std::string body_of(const Simulation& sim, std::size_t i) {
+  return sim.spec().bodies[static_cast<std::size_t>(sim.particles().body[i])].name;
+}
+
+std::string describe_particle(const Simulation& sim, std::size_t i) {
+  const ParticleStore& p = sim.particles();
+  return fmt::format(
+      "particle {} (body {}, initial position ({:.4g}, {:.4g}) mm, now ({:.4g}, "
+      "{:.4g}) mm)",
+      p.id[i], body_of(sim, i), 1e3 * p.x0[i], 1e3 * p.y0[i], 1e3 * p.x[i], 1e3 * p.y[i]);
+}
+
+// Where, when and which criterion, in words (the state is the failing one).
+std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
+                             std::int64_t last_good_step) {
+  std::string text = fmt::format(
+      "{} at t = {:.6g} s (step {}, checked every {} steps; last good "
+      "check at step {}): {}",
+      v.criterion, sim.time(), sim.step(), sim.spec().stability.check_interval, last_good_step,
+      describe_particle(sim, v.particle));
+  if (v.has_neighbor) text += ", bonded to " + describe_particle(sim, v.neighbor);
+  return text;
+}
+
+std::string failure_json(const Simulation& sim, const StabilityVerdict& v,
+                         std::int64_t last_good_step) {
+  const ParticleStore& p = sim.particles();
+  const std::size_t i = v.particle;
+  return fmt::format(
+      "{{\"criterion\": \"{}\", \"time\": {:.17g}, \"step\": {}, \"particle_id\": {}, "
+      "\"body\": \"{}\", \"initial_position\": [{:.17g}, {:.17g}], \"position\": [{:.17g}, "
+      "{:.17g}], \"neighbor_id\": {}, \"value\": {:.17g}, \"last_good_step\": {}, "
+      "\"last_good_time\": {:.17g}}}",
+      v.criterion, sim.time(), sim.step(), p.id[i], body_of(sim, i), p.x0[i], p.y0[i], p.x[i],
+      p.y[i], v.has_neighbor ? std::to_string(p.id[v.neighbor]) : "null", v.value, last_good_step,
+      static_cast<double>(last_good_step) * sim.spec().dt);
 }
 
 void print_summary(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {
@@ -55,31 +89,44 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   facts.command_line = options.command_line;
   facts.threads = thread_count();
 
-  // Writes the current state as a frame; false if it is not finite.
-  auto write_frame = [&]() {
-    const Diagnostics d = sim.diagnostics();  // refreshes strain and pressure
-    if (!finite(d)) return false;
+  // Writes the current state as a frame (its fields must be fresh).
+  std::int64_t last_frame_step = -1;
+  auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
     history.write(sim, d);
     frames.write(sim);
-    return true;
+    last_frame_step = sim.step();
   };
 
   const std::int64_t total = spec.step_count();
   const std::int64_t cadence = spec.steps_per_frame();
+  const std::int64_t check_every = spec.stability.check_interval;
   Progress progress(total, spec.dt, options.progress);
-  write_frame();
+  write_frame(sim.diagnostics());
+  StateSnapshot last_good = StateSnapshot::capture(sim.state());
   constexpr std::int64_t kProgressChunk = 2000;
   while (sim.step() < total) {
     const std::int64_t next_frame = std::min(total, (sim.step() / cadence + 1) * cadence);
-    while (sim.step() < next_frame) {
-      sim.advance(std::min(kProgressChunk, next_frame - sim.step()));
+    const std::int64_t next_check =
+        std::min(next_frame, (sim.step() / check_every + 1) * check_every);
+    while (sim.step() < next_check) {
+      sim.advance(std::min(kProgressChunk, next_check - sim.step()));
       progress.update(sim.step());
     }
-    if (!write_frame()) {
+    Diagnostics d;
+    const StabilityVerdict verdict = sim.check_stability(&d);
+    if (!verdict.ok) {
+      progress.finish();
       facts.outcome = "unstable";
+      facts.diagnosis = describe_failure(sim, verdict, last_good.step);
+      facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
+      // Keep the last good state as the final frame of the outputs.
+      last_good.restore(sim.state());
+      if (sim.step() != last_frame_step) write_frame(sim.diagnostics());
       break;
     }
+    last_good = StateSnapshot::capture(sim.state());
+    if (sim.step() == next_frame) write_frame(d);
   }
   progress.finish();
 
@@ -98,9 +145,9 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   print_summary(sim, facts, options);
   if (facts.outcome == "unstable") {
     fmt::print(stderr,
-               "mpsolid: the state became non-finite between t = {:.6g} s and t = {:.6g} s; the "
-               "last good frame is in {}\n",
-               sim.time() - static_cast<double>(cadence) * spec.dt, sim.time(),
+               "mpsolid: unstable: {}\n  The last good state (t = {:.6g} s) is the last "
+               "frame of {} and {}.\n",
+               facts.diagnosis, sim.time(), (options.out_dir / "history.csv").string(),
                (options.out_dir / "frames.h5").string());
     return kExitUnstable;
   }

@@ -54,14 +54,15 @@ std::string run_report_json(const Simulation& sim, const RunFacts& facts) {
       "  \"wall_seconds\": {:.6g},\n"
       "  \"steps_per_second\": {:.6g},\n"
       "  \"particle_steps_per_second\": {:.6g},\n"
-      "  \"phase_seconds\": {{\n{}\n  }}\n"
+      "  \"phase_seconds\": {{\n{}\n  }}{}\n"
       "}}\n",
       quoted(build_info::version), quoted(build_info::git_commit), quoted(build_info::compiler),
       quoted(build_info::build_type), quoted(build_info::cxx_flags), quoted(facts.command_line),
       quoted(sim.spec().name), quoted(sim.spec().model), quoted(facts.outcome), facts.threads,
       particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps, sim.step(),
       sim.time(), facts.frames, facts.bytes_written, facts.wall_seconds, steps_per_second,
-      steps_per_second * static_cast<double>(particles), phases);
+      steps_per_second * static_cast<double>(particles), phases,
+      facts.diagnosis_json.empty() ? "" : ",\n  \"diagnosis\": " + facts.diagnosis_json);
 }
 
 }  // namespace mpsolid

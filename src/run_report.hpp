@@ -15,6 +15,8 @@ struct RunFacts {
   int frames = 0;
   std::uintmax_t bytes_written = 0;
   std::string outcome = "completed";
+  std::string diagnosis;       // why an unstable run stopped, in words
+  std::string diagnosis_json;  // the same as a JSON object
 };
 
 std::string run_report_json(const Simulation& sim, const RunFacts& facts);

@@ -2,32 +2,68 @@
 
 namespace mpsolid {
 
-Simulation::Simulation(const CaseSpec& spec) : spec_(spec), model_(model_kind(spec.model)) {
+Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
   SetupResult setup = set_up(spec_, timers_);
   state_ = std::move(setup.state);
   body_ranges_ = std::move(setup.body_ranges);
+  model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
+  limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
+  const Diagnostics start = diagnostics();
+  initial_energy_ = start.kinetic_energy + start.strain_energy;
 }
 
 void Simulation::advance(std::int64_t steps) {
-  with_model(model_, [&](auto model) {
-    using Model = decltype(model);
-    for (std::int64_t k = 0; k < steps; ++k) advance_one_step<Model>(state_, timers_);
-  });
+  std::visit(
+      [&](auto& model) {
+        for (std::int64_t k = 0; k < steps; ++k) advance_one_step(model, state_, timers_);
+      },
+      model_);
 }
 
 void Simulation::refresh_fields() {
-  with_model(model_, [&](auto model) { update_strain<decltype(model)>(state_, timers_); });
+  std::visit([&](auto& model) { update_strain(model, state_, timers_); }, model_);
+}
+
+Diagnostics Simulation::current_diagnostics() {
+  auto t = timers_.time(Phase::diagnostics);
+  return std::visit(
+      [&](const auto& model) {
+        return compute_diagnostics(state_, [&](std::size_t i) {
+          return model.particle_strain_energy(state_.particles, state_.bonds, i);
+        });
+      },
+      model_);
 }
 
 Diagnostics Simulation::diagnostics() {
   refresh_fields();
+  return current_diagnostics();
+}
+
+StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
+  const ParticleStore& p = state_.particles;
+  StabilityVerdict v = check_finite(p);
+  if (!v.ok) return v;
+  refresh_fields();
   auto t = timers_.time(Phase::diagnostics);
-  return with_model(model_, [&](auto model) {
-    using Model = decltype(model);
-    return compute_diagnostics(state_, [&](std::size_t i) {
-      return Model::particle_strain_energy(state_.particles, state_.bonds, i);
-    });
-  });
+  const IntegrityReport integrity =
+      std::visit([&](const auto& model) { return model.check_integrity(p, state_.bonds); }, model_);
+  if (integrity.failed) {
+    v.ok = false;
+    v.criterion = integrity.criterion;
+    v.particle = integrity.particle;
+    v.neighbor = integrity.neighbor;
+    v.has_neighbor = integrity.neighbor != integrity.particle;
+    v.value = integrity.value;
+    return v;
+  }
+  const StabilityVerdict speed = check_speed(p, limit_speed_);
+  if (!speed.ok) return speed;
+  const Diagnostics d = current_diagnostics();
+  if (diagnostics_out) *diagnostics_out = d;
+  StabilityVerdict energy = check_energy(d, initial_energy_, spec_.stability.energy_tolerance);
+  energy.particle = speed.particle;  // no single culprit: name the fastest particle
+  return energy;
 }
 
 }  // namespace mpsolid

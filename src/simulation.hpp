@@ -7,6 +7,7 @@
 #include "src/diagnostics.hpp"
 #include "src/models.hpp"
 #include "src/setup.hpp"
+#include "src/stability.hpp"
 
 namespace mpsolid {
 
@@ -21,6 +22,13 @@ class Simulation {
   void refresh_fields();
   // Energies and momenta of the current state (calls refresh_fields).
   Diagnostics diagnostics();
+  // The blow-up checks of the current state (calls refresh_fields): finite
+  // values, the model's integrity (inverted bond or collapsed J), speed
+  // against the dilatational wave speed, and the energy balance. The
+  // diagnostics it computed come back in `diagnostics_out`.
+  StabilityVerdict check_stability(Diagnostics* diagnostics_out = nullptr);
+  // Sum of KE and PE at set-up, the reference of the energy balance.
+  double initial_energy() const { return initial_energy_; }
 
   double time() const { return static_cast<double>(state_.step) * state_.dt; }
   std::int64_t step() const { return state_.step; }
@@ -35,11 +43,15 @@ class Simulation {
   const PhaseTimers& timers() const { return timers_; }
 
  private:
+  Diagnostics current_diagnostics();  // fields must be fresh
+
   CaseSpec spec_;
-  ModelKind model_;
   PhaseTimers timers_;
   SolverState state_;
   std::vector<Range> body_ranges_;
+  AnyModel model_;
+  double initial_energy_ = 0;
+  double limit_speed_ = 0;
 };
 
 }  // namespace mpsolid

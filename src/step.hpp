@@ -27,23 +27,23 @@ struct SolverState {
 // Fields that depend on the current positions only: half angles, strain and
 // pressure. Walls keep theta = 0, so their half angles are set once.
 template <class Model>
-void update_strain(SolverState& s, PhaseTimers& timers) {
+void update_strain(Model& model, SolverState& s, PhaseTimers& timers) {
   if constexpr (Model::uses_rotation) {
     auto t = timers.time(Phase::half_angles);
     compute_half_angles(s.particles, s.particles.moving());
   }
   auto t = timers.time(Phase::strain);
-  Model::compute_strain(s.particles, s.bonds, s.particles.all());
+  model.compute_strain(s.particles, s.bonds, s.particles.all());
 }
 
 template <class Model>
-void advance_one_step(SolverState& s, PhaseTimers& timers) {
+void advance_one_step(Model& model, SolverState& s, PhaseTimers& timers) {
   ParticleStore& p = s.particles;
   constexpr bool rot = Model::uses_rotation;
-  update_strain<Model>(s, timers);
+  update_strain(model, s, timers);
   {
     auto t = timers.time(Phase::forces);
-    Model::compute_forces(p, s.bonds, p.moving());
+    model.compute_forces(p, s.bonds, p.moving());
   }
   if (!s.loads.empty()) {
     auto t = timers.time(Phase::loads);

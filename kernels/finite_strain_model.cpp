@@ -1,0 +1,163 @@
+#include "kernels/finite_strain_model.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "src/parallel.hpp"
+#include "src/types.hpp"
+
+namespace mpsolid {
+
+namespace {
+// Row-major 2x2: m[0] m[1] / m[2] m[3].
+inline double det(const double* m) {
+  return m[0] * m[3] - m[1] * m[2];
+}
+
+inline double youngs_modulus(double lambda, double mu) {
+  return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
+}
+}  // namespace
+
+FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bonds,
+                                     const ModelOptions& options)
+    : min_jacobian_(options.min_jacobian) {
+  const std::size_t n = p.size();
+  const double volume = bonds.constants.volume;
+  a_inv_.assign(4 * n, 0.0);
+  def_grad_.assign(4 * n, 0.0);
+  stress_a_.assign(4 * n, 0.0);
+  jacobian_.assign(n, 1.0);
+  wl_volume_.resize(bonds.entry_count());
+  hourglass_.resize(bonds.entry_count());
+  for (std::size_t i = 0; i < n; ++i) {
+    double a[4] = {0, 0, 0, 0};
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t j = bonds.neighbor[b];
+      const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+      const double len2 = r0x * r0x + r0y * r0y;
+      // strain_coef = (d / n0) w0 / |r0|, so w0 = strain_coef |r0| n0 / d.
+      const double w0 = bonds.strain_coef[b] * std::sqrt(len2) * bonds.constants.n0 / kDim;
+      const double wl = w0 / len2;
+      a[0] += wl * r0x * r0x;
+      a[1] += wl * r0x * r0y;
+      a[2] += wl * r0y * r0x;
+      a[3] += wl * r0y * r0y;
+      const double e_ij =
+          0.5 * (youngs_modulus(p.lambda[i], p.mu[i]) + youngs_modulus(p.lambda[j], p.mu[j]));
+      wl_volume_[b] = volume * wl;
+      hourglass_[b] = options.hourglass * e_ij * volume * (2.0 / bonds.constants.n0) * wl;
+    }
+    const double d = det(a);
+    // An interior particle has A = (n0 / d) I; neighbours on one line give det A = 0.
+    if (!(std::abs(d) > 1e-8 * (a[0] * a[0] + a[3] * a[3])))
+      throw InputError(fmt::format(
+          "finite_strain: particle {} at ({}, {}) m has no neighbours off one line, so its "
+          "deformation gradient is undefined; make every body at least 2 particles thick",
+          p.id[i], p.x0[i], p.y0[i]));
+    double* inv = &a_inv_[4 * i];
+    inv[0] = a[3] / d;
+    inv[1] = -a[1] / d;
+    inv[2] = -a[2] / d;
+    inv[3] = a[0] / d;
+  }
+}
+
+void FiniteStrainModel::compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
+  parallel_for(range.begin, range.end, [&](std::size_t i) {
+    const double xi = p.x[i], yi = p.y[i];
+    double g[4] = {0, 0, 0, 0};  // sum_j wl r_ij (x) r0_ij
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t j = bonds.neighbor[b];
+      const double w = wl_volume_[b];  // V wl: V cancels in F, kept for one array
+      const double rx = p.x[j] - xi, ry = p.y[j] - yi;
+      g[0] += w * rx * bonds.r0x[b];
+      g[1] += w * rx * bonds.r0y[b];
+      g[2] += w * ry * bonds.r0x[b];
+      g[3] += w * ry * bonds.r0y[b];
+    }
+    const double volume = bonds.constants.volume;
+    const double* ai = &a_inv_[4 * i];
+    double* f = &def_grad_[4 * i];
+    f[0] = (g[0] * ai[0] + g[1] * ai[2]) / volume;
+    f[1] = (g[0] * ai[1] + g[1] * ai[3]) / volume;
+    f[2] = (g[2] * ai[0] + g[3] * ai[2]) / volume;
+    f[3] = (g[2] * ai[1] + g[3] * ai[3]) / volume;
+    const double jac = det(f);
+    const double log_j = std::log(jac);
+    // F^-T = (1 / J) [[f3, -f2], [-f1, f0]]
+    const double fit[4] = {f[3] / jac, -f[2] / jac, -f[1] / jac, f[0] / jac};
+    const double mu = p.mu[i], lambda = p.lambda[i];
+    double stress[4];
+    for (int k = 0; k < 4; ++k) stress[k] = mu * (f[k] - fit[k]) + lambda * log_j * fit[k];
+    double* pa = &stress_a_[4 * i];
+    pa[0] = stress[0] * ai[0] + stress[1] * ai[2];
+    pa[1] = stress[0] * ai[1] + stress[1] * ai[3];
+    pa[2] = stress[2] * ai[0] + stress[3] * ai[2];
+    pa[3] = stress[2] * ai[1] + stress[3] * ai[3];
+    jacobian_[i] = jac;
+    p.strain[i] = log_j;
+    p.pressure[i] = -lambda * log_j / jac;
+  });
+}
+
+void FiniteStrainModel::compute_forces(ParticleStore& p, const BondTable& bonds,
+                                       Range range) const {
+  parallel_for(range.begin, range.end, [&](std::size_t i) {
+    const double xi = p.x[i], yi = p.y[i];
+    const double* pai = &stress_a_[4 * i];
+    const double* fi = &def_grad_[4 * i];
+    double fx = 0.0, fy = 0.0;
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t j = bonds.neighbor[b];
+      const double* paj = &stress_a_[4 * j];
+      const double* fj = &def_grad_[4 * j];
+      const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+      const double w = wl_volume_[b];
+      fx += w * ((pai[0] + paj[0]) * r0x + (pai[1] + paj[1]) * r0y);
+      fy += w * ((pai[2] + paj[2]) * r0x + (pai[3] + paj[3]) * r0y);
+      // Hourglass: the bond's deviation from the mean affine map of its ends.
+      const double gx = (p.x[j] - xi) - 0.5 * ((fi[0] + fj[0]) * r0x + (fi[1] + fj[1]) * r0y);
+      const double gy = (p.y[j] - yi) - 0.5 * ((fi[2] + fj[2]) * r0x + (fi[3] + fj[3]) * r0y);
+      fx += hourglass_[b] * gx;
+      fy += hourglass_[b] * gy;
+    }
+    p.fx[i] = fx;
+    p.fy[i] = fy;
+    p.torque[i] = 0.0;
+  });
+}
+
+double FiniteStrainModel::particle_strain_energy(const ParticleStore& p, const BondTable& bonds,
+                                                 std::size_t i) const {
+  const double* f = &def_grad_[4 * i];
+  const double log_j = std::log(jacobian_[i]);
+  const double frob = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] + f[3] * f[3];
+  const double density =
+      0.5 * p.mu[i] * (frob - 2.0) - p.mu[i] * log_j + 0.5 * p.lambda[i] * log_j * log_j;
+  double hourglass = 0.0;
+  for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+    const std::size_t j = bonds.neighbor[b];
+    const double* fj = &def_grad_[4 * j];
+    const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+    const double gx = (p.x[j] - p.x[i]) - 0.5 * ((f[0] + fj[0]) * r0x + (f[1] + fj[1]) * r0y);
+    const double gy = (p.y[j] - p.y[i]) - 0.5 * ((f[2] + fj[2]) * r0x + (f[3] + fj[3]) * r0y);
+    hourglass += hourglass_[b] * (gx * gx + gy * gy);
+  }
+  // Each bond is seen from both ends: a quarter of k |g|^2 per end.
+  return bonds.constants.volume * density + 0.25 * hourglass;
+}
+
+IntegrityReport FiniteStrainModel::check_integrity(const ParticleStore&, const BondTable&) const {
+  IntegrityReport r;
+  if (jacobian_.empty()) return r;
+  r.particle = index_of_min(jacobian_);
+  r.neighbor = r.particle;
+  r.value = jacobian_[r.particle];
+  r.failed = !(r.value > min_jacobian_);
+  r.criterion = fmt::format("particle neighbourhood collapsed (J = det F <= {})", min_jacobian_);
+  return r;
+}
+
+}  // namespace mpsolid
