@@ -15,6 +15,14 @@ inline double det(const double* m) {
   return m[0] * m[3] - m[1] * m[2];
 }
 
+// out = m A^-1 (row-major 2x2).
+inline void store_times_a_inv(const double* m, const double* a_inv, double* out) {
+  out[0] = m[0] * a_inv[0] + m[1] * a_inv[2];
+  out[1] = m[0] * a_inv[1] + m[1] * a_inv[3];
+  out[2] = m[2] * a_inv[0] + m[3] * a_inv[2];
+  out[3] = m[2] * a_inv[1] + m[3] * a_inv[3];
+}
+
 inline double youngs_modulus(double lambda, double mu) {
   return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
 }
@@ -22,14 +30,15 @@ inline double youngs_modulus(double lambda, double mu) {
 
 FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bonds,
                                      const ModelOptions& options)
-    : min_jacobian_(options.min_jacobian) {
+    : min_jacobian_(options.min_jacobian),
+      consistent_hourglass_(options.consistent_hourglass && options.hourglass > 0) {
   const std::size_t n = p.size();
   const double volume = bonds.constants.volume;
   a_inv_.assign(4 * n, 0.0);
   def_grad_.assign(4 * n, 0.0);
   stress_a_.assign(4 * n, 0.0);
   jacobian_.assign(n, 1.0);
-  wl_volume_.resize(bonds.entry_count());
+  wl_.resize(bonds.entry_count());
   hourglass_.resize(bonds.entry_count());
   for (std::size_t i = 0; i < n; ++i) {
     double a[4] = {0, 0, 0, 0};
@@ -46,7 +55,7 @@ FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bo
       a[3] += wl * r0y * r0y;
       const double e_ij =
           0.5 * (youngs_modulus(p.lambda[i], p.mu[i]) + youngs_modulus(p.lambda[j], p.mu[j]));
-      wl_volume_[b] = volume * wl;
+      wl_[b] = wl;
       hourglass_[b] = options.hourglass * e_ij * volume * (2.0 / bonds.constants.n0) * wl;
     }
     const double d = det(a);
@@ -70,7 +79,7 @@ void FiniteStrainModel::compute_strain(ParticleStore& p, const BondTable& bonds,
     double g[4] = {0, 0, 0, 0};  // sum_j wl r_ij (x) r0_ij
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
-      const double w = wl_volume_[b];  // V wl: V cancels in F, kept for one array
+      const double w = wl_[b];
       const double rx = p.x[j] - xi, ry = p.y[j] - yi;
       g[0] += w * rx * bonds.r0x[b];
       g[1] += w * rx * bonds.r0y[b];
@@ -80,10 +89,7 @@ void FiniteStrainModel::compute_strain(ParticleStore& p, const BondTable& bonds,
     const double volume = bonds.constants.volume;
     const double* ai = &a_inv_[4 * i];
     double* f = &def_grad_[4 * i];
-    f[0] = (g[0] * ai[0] + g[1] * ai[2]) / volume;
-    f[1] = (g[0] * ai[1] + g[1] * ai[3]) / volume;
-    f[2] = (g[2] * ai[0] + g[3] * ai[2]) / volume;
-    f[3] = (g[2] * ai[1] + g[3] * ai[3]) / volume;
+    store_times_a_inv(g, ai, f);
     const double jac = det(f);
     const double log_j = std::log(jac);
     // F^-T = (1 / J) [[f3, -f2], [-f1, f0]]
@@ -91,37 +97,58 @@ void FiniteStrainModel::compute_strain(ParticleStore& p, const BondTable& bonds,
     const double mu = p.mu[i], lambda = p.lambda[i];
     double stress[4];
     for (int k = 0; k < 4; ++k) stress[k] = mu * (f[k] - fit[k]) + lambda * log_j * fit[k];
-    double* pa = &stress_a_[4 * i];
-    pa[0] = stress[0] * ai[0] + stress[1] * ai[2];
-    pa[1] = stress[0] * ai[1] + stress[1] * ai[3];
-    pa[2] = stress[2] * ai[0] + stress[3] * ai[2];
-    pa[3] = stress[2] * ai[1] + stress[3] * ai[3];
+    for (double& s : stress) s *= volume;  // S = V P
+    store_times_a_inv(stress, ai, &stress_a_[4 * i]);
     jacobian_[i] = jac;
     p.strain[i] = log_j;
     p.pressure[i] = -lambda * log_j / jac;
   });
+  if (!consistent_hourglass_) return;
+  // Pass 1b: Q_i = -1/2 sum_j h_ij g_ij (x) r0_ij, added to S_i. Reads F of
+  // the neighbours, so it follows pass 1 for every particle.
+  parallel_for(range.begin, range.end, [&](std::size_t i) {
+    double q[4] = {0, 0, 0, 0};
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto g = hourglass_gap(p, bonds, i, b);
+      const double h = -0.5 * hourglass_[b];
+      q[0] += h * g[0] * bonds.r0x[b];
+      q[1] += h * g[0] * bonds.r0y[b];
+      q[2] += h * g[1] * bonds.r0x[b];
+      q[3] += h * g[1] * bonds.r0y[b];
+    }
+    double qa[4];
+    store_times_a_inv(q, &a_inv_[4 * i], qa);
+    for (int k = 0; k < 4; ++k) stress_a_[4 * i + static_cast<std::size_t>(k)] += qa[k];
+  });
+}
+
+std::array<double, 2> FiniteStrainModel::hourglass_gap(const ParticleStore& p,
+                                                       const BondTable& bonds, std::size_t i,
+                                                       std::uint32_t b) const {
+  const std::size_t j = bonds.neighbor[b];
+  const double* fi = &def_grad_[4 * i];
+  const double* fj = &def_grad_[4 * j];
+  const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+  return {(p.x[j] - p.x[i]) - 0.5 * ((fi[0] + fj[0]) * r0x + (fi[1] + fj[1]) * r0y),
+          (p.y[j] - p.y[i]) - 0.5 * ((fi[2] + fj[2]) * r0x + (fi[3] + fj[3]) * r0y)};
 }
 
 void FiniteStrainModel::compute_forces(ParticleStore& p, const BondTable& bonds,
                                        Range range) const {
   parallel_for(range.begin, range.end, [&](std::size_t i) {
-    const double xi = p.x[i], yi = p.y[i];
     const double* pai = &stress_a_[4 * i];
-    const double* fi = &def_grad_[4 * i];
     double fx = 0.0, fy = 0.0;
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       const double* paj = &stress_a_[4 * j];
-      const double* fj = &def_grad_[4 * j];
       const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
-      const double w = wl_volume_[b];
-      fx += w * ((pai[0] + paj[0]) * r0x + (pai[1] + paj[1]) * r0y);
-      fy += w * ((pai[2] + paj[2]) * r0x + (pai[3] + paj[3]) * r0y);
+      const double wl = wl_[b];
+      fx += wl * ((pai[0] + paj[0]) * r0x + (pai[1] + paj[1]) * r0y);
+      fy += wl * ((pai[2] + paj[2]) * r0x + (pai[3] + paj[3]) * r0y);
       // Hourglass: the bond's deviation from the mean affine map of its ends.
-      const double gx = (p.x[j] - xi) - 0.5 * ((fi[0] + fj[0]) * r0x + (fi[1] + fj[1]) * r0y);
-      const double gy = (p.y[j] - yi) - 0.5 * ((fi[2] + fj[2]) * r0x + (fi[3] + fj[3]) * r0y);
-      fx += hourglass_[b] * gx;
-      fy += hourglass_[b] * gy;
+      const auto g = hourglass_gap(p, bonds, i, b);
+      fx += hourglass_[b] * g[0];
+      fy += hourglass_[b] * g[1];
     }
     p.fx[i] = fx;
     p.fy[i] = fy;
@@ -138,12 +165,8 @@ double FiniteStrainModel::particle_strain_energy(const ParticleStore& p, const B
       0.5 * p.mu[i] * (frob - 2.0) - p.mu[i] * log_j + 0.5 * p.lambda[i] * log_j * log_j;
   double hourglass = 0.0;
   for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-    const std::size_t j = bonds.neighbor[b];
-    const double* fj = &def_grad_[4 * j];
-    const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
-    const double gx = (p.x[j] - p.x[i]) - 0.5 * ((f[0] + fj[0]) * r0x + (f[1] + fj[1]) * r0y);
-    const double gy = (p.y[j] - p.y[i]) - 0.5 * ((f[2] + fj[2]) * r0x + (f[3] + fj[3]) * r0y);
-    hourglass += hourglass_[b] * (gx * gx + gy * gy);
+    const auto g = hourglass_gap(p, bonds, i, b);
+    hourglass += hourglass_[b] * (g[0] * g[0] + g[1] * g[1]);
   }
   // Each bond is seen from both ends: a quarter of k |g|^2 per end.
   return bonds.constants.volume * density + 0.25 * hourglass;

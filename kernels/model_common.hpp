@@ -9,7 +9,8 @@
 namespace mpsolid {
 
 struct ModelOptions {
-  double hourglass = 1.0;     // finite_strain: hourglass penalty coefficient alpha
+  double hourglass = 1.0;            // finite_strain: hourglass penalty coefficient alpha
+  bool consistent_hourglass = true;  // finite_strain: full gradient (true) or F held fixed
   double min_jacobian = 0.1;  // finite_strain: J at or below this is a collapsed neighbourhood
 };
 

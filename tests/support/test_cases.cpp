@@ -14,7 +14,8 @@ CaseSpec rod_case(const std::vector<std::string>& overrides) {
   return read_case(source_path("cases/shock_rod.toml"), overrides);
 }
 
-CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt) {
+CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt,
+                         const std::string& model) {
   const double l0 = 1e-3;
   std::string text = fmt::format(R"(
 l0 = {l0}
@@ -43,7 +44,7 @@ y = [{y0}, {y1}]
 )",
                         fmt::arg("x0", -3 * l0), fmt::arg("y0", -2 * l0),
                         fmt::arg("y1", (ny + 2) * l0));
-  return parse_case(text, "free_block.toml");
+  return parse_case(text, "free_block.toml", {"model=" + model});
 }
 
 bool same_bits(const ParticleStore& a, const ParticleStore& b) {

@@ -15,7 +15,8 @@ CaseSpec rod_case(const std::vector<std::string>& overrides = {});
 
 // A free elastic block of nx x ny particles (l0 = 1 mm, rubber-like material),
 // optionally with a rigid plate glued to its left side; no loads, no walls.
-CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt = 1e-7);
+CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt = 1e-7,
+                         const std::string& model = "paper");
 
 // Every state array of two stores is equal bit for bit.
 bool same_bits(const ParticleStore& a, const ParticleStore& b);
