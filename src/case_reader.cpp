@@ -211,6 +211,8 @@ std::string resolved_toml(const CaseSpec& c) {
                     format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
   out += fmt::format("\n[time]\ndt = {}\nend = {}\n\n[output]\nframe_interval = {}\n",
                      format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
+  out += fmt::format("checkpoint_interval = {}\ncompression = {}\n",
+                     format_number(c.checkpoint_interval), c.compression);
   out +=
       fmt::format("\n[finite_strain]\nhourglass = {}\n", format_number(c.model_options.hourglass));
   out += fmt::format(
@@ -376,12 +378,21 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
 
   // Output.
   c.frame_interval = c.end / 10.0;
+  c.checkpoint_interval = std::max(c.end / 4.0, c.dt);
   if (const TomlValue* table = top.subtable_or_null("output")) {
     TableReader r(*table, "output", file);
     c.frame_interval = r.number_or("frame_interval", c.frame_interval);
     r.range_check("frame_interval", c.frame_interval, c.frame_interval >= c.dt,
                   fmt::format("[dt, inf) = [{}, inf) s", c.dt));
-    r.finish({"frame_interval"});
+    c.checkpoint_interval = r.number_or("checkpoint_interval", c.checkpoint_interval);
+    r.range_check("checkpoint_interval", c.checkpoint_interval,
+                  c.checkpoint_interval == 0 || c.checkpoint_interval >= c.dt,
+                  fmt::format("0 (only at the end) or [dt, inf) = [{}, inf) s", c.dt));
+    const double level = r.number_or("compression", 0);
+    r.range_check("compression", level, level >= 0 && level <= 9 && level == std::floor(level),
+                  "a deflate level 0 (off) to 9");
+    c.compression = static_cast<int>(level);
+    r.finish({"frame_interval", "checkpoint_interval", "compression"});
   }
 
   // Model options.
@@ -430,6 +441,15 @@ std::int64_t CaseSpec::step_count() const {
   if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
     return static_cast<std::int64_t>(nearest);
   return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+std::int64_t CaseSpec::steps_per_checkpoint() const {
+  if (checkpoint_interval <= 0) return 0;
+  const double ratio = checkpoint_interval / dt;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
+    return std::max<std::int64_t>(1, static_cast<std::int64_t>(nearest));
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
 }
 
 std::int64_t CaseSpec::steps_per_frame() const {

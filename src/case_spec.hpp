@@ -47,12 +47,15 @@ struct CaseSpec {
   double dt = 0;
   double end = 0;
   double frame_interval = 0;
-  ModelOptions model_options;  // hourglass (finite_strain) and min_jacobian (stability)
+  double checkpoint_interval = 0;  // s; 0: only at the end of the run (and on a stop signal)
+  int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
+  ModelOptions model_options;      // hourglass (finite_strain) and min_jacobian (stability)
   StabilitySpec stability;
   std::string resolved_toml;  // the case with every default and override filled in
 
-  std::int64_t step_count() const;       // steps to reach `end`
-  std::int64_t steps_per_frame() const;  // output cadence in steps
+  std::int64_t step_count() const;            // steps to reach `end`
+  std::int64_t steps_per_frame() const;       // output cadence in steps
+  std::int64_t steps_per_checkpoint() const;  // checkpoint cadence in steps; 0: none
 };
 
 }  // namespace mpsolid

@@ -1,121 +1,126 @@
 #include "src/hdf5_writer.hpp"
 
 #include <fmt/format.h>
-#include <hdf5.h>
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "src/atomic_file.hpp"
+#include "src/file_snapshot.hpp"
+#include "src/hdf5_io.hpp"
 
 namespace mpsolid {
 
-namespace {
-void check(herr_t status, const char* what) {
-  if (status < 0) throw std::runtime_error(fmt::format("HDF5 error while writing {}", what));
+const std::vector<XdmfField>& frame_fields() {
+  static const std::vector<XdmfField> fields = {
+      {"id", "Int", 4, 1},
+      {"kind", "Char", 1, 1},
+      {"body", "Int", 4, 1},
+      {"velocity", "Float", 8, 2},
+      {"rotation", "Float", 8, 1},
+      {"angular_velocity", "Float", 8, 1},
+      {"volumetric_strain", "Float", 8, 1},
+      {"pressure", "Float", 8, 1},
+  };
+  return fields;
 }
-hid_t check_id(hid_t id, const char* what) {
-  if (id < 0) throw std::runtime_error(fmt::format("HDF5 error while creating {}", what));
-  return id;
-}
-
-template <class T>
-hid_t h5_type();
-template <>
-hid_t h5_type<double>() {
-  return H5T_NATIVE_DOUBLE;
-}
-template <>
-hid_t h5_type<std::int32_t>() {
-  return H5T_NATIVE_INT32;
-}
-template <>
-hid_t h5_type<std::int8_t>() {
-  return H5T_NATIVE_INT8;
-}
-template <>
-hid_t h5_type<std::int64_t>() {
-  return H5T_NATIVE_INT64;
-}
-
-template <class T>
-void write_dataset(hid_t where, const char* name, const std::vector<T>& data, hsize_t columns = 1) {
-  const hsize_t dims[2] = {data.size() / columns, columns};
-  const hid_t space = check_id(H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr), name);
-  const hid_t set = check_id(
-      H5Dcreate2(where, name, h5_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
-  check(H5Dwrite(set, h5_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), name);
-  H5Dclose(set);
-  H5Sclose(space);
-}
-
-template <class T>
-void write_attribute(hid_t where, const char* name, T value) {
-  const hid_t space = check_id(H5Screate(H5S_SCALAR), name);
-  const hid_t attr =
-      check_id(H5Acreate2(where, name, h5_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT), name);
-  check(H5Awrite(attr, h5_type<T>(), &value), name);
-  H5Aclose(attr);
-  H5Sclose(space);
-}
-
-void write_strings(hid_t where, const char* name, const std::vector<std::string>& items) {
-  std::size_t width = 1;
-  for (const auto& s : items) width = std::max(width, s.size() + 1);
-  std::vector<char> buffer(width * items.size(), '\0');
-  for (std::size_t k = 0; k < items.size(); ++k)
-    std::copy(items[k].begin(), items[k].end(), buffer.begin() + static_cast<long>(k * width));
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, width);
-  const hsize_t dims[1] = {items.size()};
-  const hid_t space = H5Screate_simple(1, dims, nullptr);
-  const hid_t set =
-      check_id(H5Dcreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
-  check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), name);
-  H5Dclose(set);
-  H5Sclose(space);
-  H5Tclose(type);
-}
-}  // namespace
 
 struct FrameWriter::File {
-  hid_t file = -1;
-  hid_t frames = -1;
+  h5::File file;
+  h5::Group frames;
   std::vector<std::size_t> storage_of_id;
 };
 
-FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim)
-    : path_(path), file_(std::make_unique<File>()) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by exceptions
-  file_->file = check_id(
-      H5Fcreate(staging_path(path).c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "frames.h5");
-  file_->frames =
-      check_id(H5Gcreate2(file_->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "frames");
+namespace {
+std::string frame_group(int index) {
+  return fmt::format("{:06d}", index);
+}
+
+std::filesystem::path sidecar_path(const std::filesystem::path& path) {
+  return path.parent_path() / (path.stem().string() + ".xdmf");
+}
+}  // namespace
+
+FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+                         std::uint64_t run_id)
+    : path_(path),
+      file_(std::make_unique<File>()),
+      compression_(compression),
+      particles_(sim.particles().size()) {
+  file_->file = h5::File::create(staging_path(path));
+  file_->frames = file_->file.create_group("frames");
   file_->storage_of_id = sim.particles().storage_of_id();
   std::vector<std::string> bodies;
   for (const auto& b : sim.spec().bodies) bodies.push_back(b.name);
-  write_strings(file_->file, "body_names", bodies);
-  write_strings(file_->file, "kind_names", {"wall", "elastic", "rigid"});
-  write_attribute<double>(file_->file, "l0", sim.spec().l0);
-  write_attribute<double>(file_->file, "depth", sim.spec().depth);
+  file_->file.write_strings("body_names", bodies);
+  file_->file.write_strings("kind_names", {"wall", "elastic", "rigid"});
+  file_->file.set_attribute<double>("l0", sim.spec().l0);
+  file_->file.set_attribute<double>("depth", sim.spec().depth);
+  file_->file.set_attribute<std::int64_t>("particles", static_cast<std::int64_t>(particles_));
+  file_->file.set_attribute<std::uint64_t>("run_id", run_id);
 }
 
-FrameWriter::~FrameWriter() {
-  if (file_ && file_->file >= 0) {
-    H5Gclose(file_->frames);
-    H5Fclose(file_->file);
+FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+                         std::uint64_t run_id, int keep_frames)
+    : path_(path),
+      file_(std::make_unique<File>()),
+      compression_(compression),
+      particles_(sim.particles().size()) {
+  const std::filesystem::path staged = staging_path(path);
+  if (!std::filesystem::exists(path))
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's frames cannot be continued", path.string()));
+  copy_file_atomically(path, staged);
+  try {
+    file_->file = h5::File::open(staged, true);
+    if (file_->file.attribute<std::uint64_t>("run_id") != run_id)
+      throw InputError(fmt::format(
+          "{} was written by another run than the checkpoint (a checkpoint from a different run "
+          "or case?)",
+          path.string()));
+    if (file_->file.attribute<std::int64_t>("particles") != static_cast<std::int64_t>(particles_))
+      throw InputError(fmt::format("{} has another particle count than the case", path.string()));
+    file_->frames = file_->file.open_group("frames");
+    for (const std::string& name : file_->frames.children()) {
+      const int index = std::stoi(name);
+      if (index >= keep_frames) file_->frames.remove(name);
+    }
+    for (int k = 0; k < keep_frames; ++k) {
+      if (!file_->frames.has(frame_group(k)))
+        throw InputError(fmt::format("{} has {} frames, the checkpoint records {}", path.string(),
+                                     k, keep_frames));
+      const h5::Group group = file_->frames.open_group(frame_group(k));
+      frames_.push_back({"/frames/" + frame_group(k), group.attribute<double>("time")});
+    }
+    file_->file.flush();
+  } catch (const h5::Error& e) {
+    throw InputError(fmt::format("{}: cannot continue it: {}", path.string(), e.what()));
+  }
+  file_->storage_of_id = sim.particles().storage_of_id();
+  first_frame_ = keep_frames;
+  start_bytes_ = file_->file.size();
+}
+
+FrameWriter::~FrameWriter() = default;
+
+std::uint64_t frames_run_id(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path))
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's frames cannot be continued", path.string()));
+  try {
+    return h5::File::open(path, false).attribute<std::uint64_t>("run_id");
+  } catch (const h5::Error& e) {
+    throw InputError(fmt::format("{}: cannot read it: {}", path.string(), e.what()));
   }
 }
 
 void FrameWriter::write(const Simulation& sim) {
   const ParticleStore& p = sim.particles();
   const auto& order = file_->storage_of_id;
-  const std::string name = fmt::format("{:06d}", frames_);
-  const hid_t group = check_id(
-      H5Gcreate2(file_->frames, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "frame");
-  write_attribute<std::int64_t>(group, "step", sim.step());
-  write_attribute<double>(group, "time", sim.time());
+  const int index = frames_total();
+  const h5::Group group = file_->frames.create_group(frame_group(index));
+  group.set_attribute<std::int64_t>("step", sim.step());
+  group.set_attribute<double>("time", sim.time());
 
   const std::size_t n = p.size();
   auto gather = [&](const std::vector<double>& field) {
@@ -138,33 +143,42 @@ void FrameWriter::write(const Simulation& sim) {
     body[k] = p.body[order[k]];
     kind[k] = static_cast<std::int8_t>(p.kind[order[k]]);
   }
-  write_dataset(group, "id", id);
-  write_dataset(group, "kind", kind);
-  write_dataset(group, "body", body);
-  write_dataset(group, "position", gather_pair(p.x, p.y), 2);
-  write_dataset(group, "velocity", gather_pair(p.vx, p.vy), 2);
-  write_dataset(group, "rotation", gather(p.theta));
-  write_dataset(group, "angular_velocity", gather(p.omega));
-  write_dataset(group, "volumetric_strain", gather(p.strain));
-  write_dataset(group, "pressure", gather(p.pressure));
-  H5Gclose(group);
-  H5Fflush(file_->file, H5F_SCOPE_GLOBAL);  // a crashed run keeps its frames
-  ++frames_;
+  const int level = compression_;
+  group.write("id", id, 1, level);
+  group.write("kind", kind, 1, level);
+  group.write("body", body, 1, level);
+  group.write("position", gather_pair(p.x, p.y), 2, level);
+  group.write("velocity", gather_pair(p.vx, p.vy), 2, level);
+  group.write("rotation", gather(p.theta), 1, level);
+  group.write("angular_velocity", gather(p.omega), 1, level);
+  group.write("volumetric_strain", gather(p.strain), 1, level);
+  group.write("pressure", gather(p.pressure), 1, level);
+  file_->file.flush();  // a crashed run keeps its frames in the staging file
+  frames_.push_back({"/frames/" + frame_group(index), sim.time()});
 }
 
 std::uintmax_t FrameWriter::bytes_written() const {
-  if (file_->file < 0) return published_bytes_;
-  hsize_t size = 0;
-  H5Fget_filesize(file_->file, &size);
-  return size;
+  if (!file_->file.is_open()) return published_bytes_ - start_bytes_;
+  return file_->file.size() - start_bytes_;
+}
+
+void FrameWriter::write_sidecar() const {
+  write_file_atomically(sidecar_path(path_), xdmf_document(path_.filename().string(), particles_,
+                                                           frames_, frame_fields()));
+}
+
+void FrameWriter::snapshot() {
+  file_->file.flush();
+  copy_file_atomically(staging_path(path_), path_);
+  write_sidecar();
 }
 
 void FrameWriter::publish() {
-  published_bytes_ = bytes_written();
-  H5Gclose(file_->frames);
-  H5Fclose(file_->file);
-  file_->file = -1;
+  published_bytes_ = file_->file.size();
+  file_->frames = h5::Group();
+  file_->file.close();
   publish_staged_file(path_);
+  write_sidecar();
 }
 
 }  // namespace mpsolid

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "src/atomic_file.hpp"
+#include "src/file_snapshot.hpp"
 
 namespace mpsolid {
 
@@ -42,14 +43,51 @@ std::vector<double> history_row(const Simulation& sim, const Diagnostics& d) {
   return row;
 }
 
+namespace {
+std::string header_line(const Simulation& sim) {
+  std::string header;
+  for (const auto& c : history_columns(sim)) header += (header.empty() ? "" : ",") + c;
+  return header + '\n';
+}
+}  // namespace
+
 HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim)
     : path_(path) {
   file_ = std::fopen(staging_path(path).c_str(), "w");
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
-  std::string header;
-  for (const auto& c : history_columns(sim)) header += (header.empty() ? "" : ",") + c;
-  header += '\n';
+  const std::string header = header_line(sim);
   bytes_ += std::fwrite(header.data(), 1, header.size(), file_);
+  file_bytes_ = bytes_;
+}
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim,
+                             std::uintmax_t keep_bytes)
+    : path_(path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec)
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's history cannot be continued", path.string()));
+  if (size < keep_bytes)
+    throw InputError(
+        fmt::format("{} has {} bytes, the checkpoint records {}", path.string(), size, keep_bytes));
+  copy_file_atomically(path, staging_path(path));
+  std::filesystem::resize_file(staging_path(path), keep_bytes);
+  file_ = std::fopen(staging_path(path).c_str(), "r+");
+  if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
+  const std::string header = header_line(sim);
+  std::string start(header.size(), '\0');
+  const std::size_t got = std::fread(start.data(), 1, start.size(), file_);
+  char last = '\0';
+  if (keep_bytes > 0 && std::fseek(file_, static_cast<long>(keep_bytes) - 1, SEEK_SET) == 0)
+    last = static_cast<char>(std::fgetc(file_));
+  if (got != header.size() || start != header || last != '\n')
+    throw InputError(fmt::format(
+        "{} does not hold this case's history up to the checkpoint (other columns, or cut "
+        "inside a row)",
+        path.string()));
+  std::fseek(file_, 0, SEEK_END);
+  file_bytes_ = keep_bytes;
 }
 
 HistoryWriter::~HistoryWriter() {
@@ -63,8 +101,18 @@ void HistoryWriter::write(const Simulation& sim, const Diagnostics& d) {
     line += fmt::format("{:.17g}", v);
   }
   line += '\n';
-  bytes_ += std::fwrite(line.data(), 1, line.size(), file_);
-  std::fflush(file_);  // a crashed run keeps every frame written so far
+  const std::size_t written = std::fwrite(line.data(), 1, line.size(), file_);
+  bytes_ += written;
+  file_bytes_ += written;
+  // A crashed run keeps every frame written so far; a short write is an error.
+  if (std::fflush(file_) != 0 || written != line.size())
+    throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
+}
+
+void HistoryWriter::snapshot() {
+  if (std::fflush(file_) != 0)
+    throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
+  copy_file_atomically(staging_path(path_), path_);
 }
 
 void HistoryWriter::publish() {

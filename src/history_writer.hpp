@@ -19,18 +19,26 @@ class HistoryWriter {
  public:
   // Writes to a staging file; publish() renames it to `path`.
   HistoryWriter(const std::filesystem::path& path, const Simulation& sim);
+  // A resumed run: continues the published file at `path` from its first
+  // `keep_bytes` bytes (later rows are dropped). Throws InputError if that
+  // file is missing, shorter or has other columns.
+  HistoryWriter(const std::filesystem::path& path, const Simulation& sim,
+                std::uintmax_t keep_bytes);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
   void write(const Simulation& sim, const Diagnostics& d);
+  // Publishes a copy of the file as it is now; writing goes on.
+  void snapshot();
   void publish();
-  std::uintmax_t bytes_written() const { return bytes_; }
+  std::uintmax_t bytes_written() const { return bytes_; }    // by this writer
+  std::uintmax_t file_bytes() const { return file_bytes_; }  // in the file, header included
 
  private:
   std::filesystem::path path_;
   std::FILE* file_ = nullptr;
-  std::uintmax_t bytes_ = 0;
+  std::uintmax_t bytes_ = 0, file_bytes_ = 0;
 };
 
 }  // namespace mpsolid

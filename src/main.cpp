@@ -1,5 +1,6 @@
 // mpsolid: the command line.
 //   mpsolid run CASE [--out DIR] [--threads N] [--set KEY=VALUE]...
+//   mpsolid resume DIR [--threads N] [--set time.end=VALUE]...
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -9,6 +10,7 @@
 #include "src/parallel.hpp"
 #include "src/progress.hpp"
 #include "src/run.hpp"
+#include "src/signals.hpp"
 
 int main(int argc, char** argv) {
   using namespace mpsolid;
@@ -24,6 +26,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4096));
   run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
       ->type_name("KEY=VALUE");
+  std::string resume_dir;
+  CLI::App* resume = app.add_subcommand(
+      "resume", "continue a run from its last checkpoint (DIR/checkpoint.h5), to the same bits");
+  resume->add_option("dir", resume_dir, "the run's output folder")->required();
+  resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  resume
+      ->add_option("--set", overrides,
+                   "go on to a later end: --set time.end=0.02 (also output.checkpoint_interval, "
+                   "output.compression)")
+      ->type_name("KEY=VALUE");
 
   try {
     app.parse(argc, argv);
@@ -37,6 +50,15 @@ int main(int argc, char** argv) {
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
   try {
+    install_stop_handlers();
+    if (resume->parsed()) {
+      RunOptions options;
+      options.out_dir = resume_dir;
+      options.threads = threads > 0 ? threads : available_cores();
+      options.progress = stderr_is_terminal();
+      options.command_line = command_line;
+      return resume_run(overrides, options);
+    }
     const CaseSpec spec = read_case(case_path, overrides);
     RunOptions options;
     options.out_dir =

@@ -19,16 +19,39 @@ std::string quoted(const std::string& s) {
   }
   return out + "\"";
 }
-}  // namespace
 
-std::string run_report_json(const Simulation& sim, const RunFacts& facts) {
-  const PhaseTimers& timers = sim.timers();
-  const double steps = static_cast<double>(facts.steps);
-  const double steps_per_second = facts.wall_seconds > 0 ? steps / facts.wall_seconds : 0.0;
+// Wall seconds per phase, checkpoints included, as JSON members.
+std::string phases_json(const Simulation& sim, const RunFacts& facts, const char* separator) {
   std::string phases;
   for (std::size_t k = 0; k < kPhaseNames.size(); ++k)
-    phases += fmt::format("{}    {}: {:.6g}", k ? ",\n" : "", quoted(kPhaseNames[k]),
-                          timers.seconds(static_cast<Phase>(k)));
+    phases += fmt::format("{}{}: {:.6g}", k ? separator : "", quoted(kPhaseNames[k]),
+                          sim.timers().seconds(static_cast<Phase>(k)));
+  return phases + fmt::format("{}\"checkpoint\": {:.6g}", separator, facts.checkpoint_seconds);
+}
+
+double rate(const RunFacts& facts) {
+  return facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0.0;
+}
+}  // namespace
+
+std::string segment_json(const Simulation& sim, const RunFacts& facts) {
+  return fmt::format(
+      "{{\"command_line\": {}, \"outcome\": {}, \"threads\": {}, \"start_step\": {}, "
+      "\"final_step\": {}, \"steps\": {}, \"wall_seconds\": {:.6g}, \"steps_per_second\": "
+      "{:.6g}, \"frames\": {}, \"bytes_written\": {}, \"checkpoints\": {}, "
+      "\"checkpoint_bytes\": {}, \"phase_seconds\": {{{}}}}}",
+      quoted(facts.command_line), quoted(facts.outcome), facts.threads, facts.start_step,
+      sim.step(), facts.steps, facts.wall_seconds, rate(facts), facts.frames, facts.bytes_written,
+      facts.checkpoints, facts.checkpoint_bytes, phases_json(sim, facts, ", "));
+}
+
+std::string run_report_json(const Simulation& sim, const RunFacts& facts,
+                            const std::vector<std::string>& previous_segments) {
+  const double steps_per_second = rate(facts);
+  const std::string phases = "    " + phases_json(sim, facts, ",\n    ");
+  std::string segments;
+  for (const std::string& s : previous_segments) segments += "    " + s + ",\n";
+  segments += "    " + segment_json(sim, facts);
   const std::size_t particles = sim.particles().size();
   return fmt::format(
       "{{\n"
@@ -49,19 +72,24 @@ std::string run_report_json(const Simulation& sim, const RunFacts& facts) {
       "  \"steps\": {},\n"
       "  \"final_step\": {},\n"
       "  \"simulated_time\": {:.17g},\n"
+      "  \"start_step\": {},\n"
       "  \"frames\": {},\n"
       "  \"bytes_written\": {},\n"
+      "  \"checkpoints\": {},\n"
+      "  \"checkpoint_bytes\": {},\n"
       "  \"wall_seconds\": {:.6g},\n"
       "  \"steps_per_second\": {:.6g},\n"
       "  \"particle_steps_per_second\": {:.6g},\n"
-      "  \"phase_seconds\": {{\n{}\n  }}{}\n"
+      "  \"phase_seconds\": {{\n{}\n  }},\n"
+      "  \"segments\": [\n{}\n  ]{}\n"
       "}}\n",
       quoted(build_info::version), quoted(build_info::git_commit), quoted(build_info::compiler),
       quoted(build_info::build_type), quoted(build_info::cxx_flags), quoted(facts.command_line),
       quoted(sim.spec().name), quoted(sim.spec().model), quoted(facts.outcome), facts.threads,
       particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps, sim.step(),
-      sim.time(), facts.frames, facts.bytes_written, facts.wall_seconds, steps_per_second,
-      steps_per_second * static_cast<double>(particles), phases,
+      sim.time(), facts.start_step, facts.frames, facts.bytes_written, facts.checkpoints,
+      facts.checkpoint_bytes, facts.wall_seconds, steps_per_second,
+      steps_per_second * static_cast<double>(particles), phases, segments,
       facts.diagnosis_json.empty() ? "" : ",\n  \"diagnosis\": " + facts.diagnosis_json);
 }
 

@@ -218,7 +218,7 @@ if [[ $rc -ne 0 ]]; then
 else
   ok "good: exit 0"
 fi
-for f in history.csv frames.h5 case.resolved.toml run.json; do
+for f in history.csv frames.h5 frames.xdmf case.resolved.toml run.json checkpoint.h5; do
   if [[ -s "$OUT/$f" ]]; then ok "good: $f written"; else fail "good: $f missing or empty"; fi
 done
 if [[ -f "$OUT/history.csv" ]]; then
@@ -265,7 +265,8 @@ else
   ok "good: no *.tmp files left"
 fi
 extra=$(cd "$OUT" 2>/dev/null && find . -mindepth 1 | sort |
-  grep -vxF -e ./history.csv -e ./frames.h5 -e ./case.resolved.toml -e ./run.json)
+  grep -vxF -e ./history.csv -e ./frames.h5 -e ./frames.xdmf -e ./case.resolved.toml \
+    -e ./run.json -e ./checkpoint.h5)
 if [[ -n "$extra" ]]; then
   fail "good: unexpected files in the output folder: $extra"
 fi

@@ -1,0 +1,30 @@
+#pragma once
+// frames.xdmf: the XDMF 2 sidecar of frames.h5, so ParaView (Xdmf reader)
+// opens the frames as a time series of particle point sets with every field.
+// Plain text; it names the HDF5 datasets and their shapes, it holds no data.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace mpsolid {
+
+// One per-particle dataset of a frame group.
+struct XdmfField {
+  std::string name;         // dataset name in the frame group
+  std::string number_type;  // XDMF NumberType: Float, Int, Char
+  int precision = 8;        // bytes per value
+  int components = 1;       // 1 scalar, 2 vector (x, y)
+};
+
+struct XdmfFrame {
+  std::string group;  // HDF5 path of the frame group, e.g. /frames/000003
+  double time = 0;    // s
+};
+
+// The document for `frames` in `h5_file` (a name relative to the XDMF file),
+// `particles` particles each, positions in the dataset `position` (N x 2).
+std::string xdmf_document(const std::string& h5_file, std::size_t particles,
+                          const std::vector<XdmfFrame>& frames,
+                          const std::vector<XdmfField>& fields);
+
+}  // namespace mpsolid

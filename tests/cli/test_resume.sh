@@ -1,0 +1,267 @@
+#!/usr/bin/env bash
+# Checkpoints and resume, end to end:
+#  - a run stopped by SIGINT or SIGTERM exits 4 with published outputs and a
+#    checkpoint, and `mpsolid resume` finishes it to the same bits as an
+#    uninterrupted run, also at another thread count;
+#  - a run killed (SIGKILL) at random moments, resumed after each kill, ends
+#    with the same history.csv, frames and final state as an uninterrupted
+#    run, bit for bit (tests/tools/compare_runs.py);
+#  - a resume can go past the old end: run to T, resume to 2T = run to 2T;
+#  - a missing, damaged or foreign checkpoint, or a --set that changes the
+#    case, is refused with exit 2 and a clear message, leaving the folder as
+#    it was.
+#
+#   bash tests/cli/test_resume.sh PATH_TO_MPSOLID    (from the repository root)
+set -u
+
+if [[ $# -ne 1 ]]; then
+  echo "usage: bash tests/cli/test_resume.sh PATH_TO_MPSOLID" >&2
+  exit 2
+fi
+BIN=$(realpath -- "$1") || { echo "FAIL: no mpsolid binary at '$1'" >&2; exit 1; }
+cd "$(dirname -- "${BASH_SOURCE[0]}")/../.." || exit 1
+PY=/usr/bin/python3
+# Other tests run beside this one on few cores: threads that wait should sleep.
+export OMP_WAIT_POLICY=PASSIVE
+COMPARE=tests/tools/compare_runs.py
+CASE=cases/shock_rod.toml
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/mpsolid_resume.XXXXXX") || exit 1
+trap 'rm -rf -- "$TMP"' EXIT
+
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ok() { echo "ok: $*"; }
+
+# 10,000 steps, a frame and a checkpoint every 500 steps.
+SHORT=(--set time.end=1e-4 --set output.frame_interval=5e-6 --set output.checkpoint_interval=5e-6)
+
+# mp LABEL ARGS...: mpsolid ARGS in the foreground; exit code in $rc.
+mp() {
+  local label=$1
+  shift
+  timeout 300 "$BIN" "$@" </dev/null >"$TMP/$label.out" 2>"$TMP/$label.err"
+  rc=$?
+}
+show() {
+  echo "    stdout: $(head -c 1500 "$TMP/$1.out")"
+  echo "    stderr: $(head -c 1500 "$TMP/$1.err")"
+}
+same_as_reference() {  # same_as_reference LABEL DIR
+  if $PY "$COMPARE" "$REF" "$2" >"$TMP/$1.compare" 2>&1; then
+    ok "$1: identical to the uninterrupted run ($(tail -n 1 "$TMP/$1.compare"))"
+  else
+    fail "$1: differs from the uninterrupted run:"
+    sed 's/^/    /' "$TMP/$1.compare" | head -n 12
+  fi
+}
+snapshot() {
+  (cd "$1" && find . -type f -print0 | sort -z | xargs -0 -r sha256sum)
+}
+
+# ---- the reference: uninterrupted -----------------------------------------------
+
+REF=$TMP/reference
+mp reference run "$CASE" "${SHORT[@]}" --out "$REF" --threads 1
+if [[ $rc -ne 0 ]]; then
+  fail "reference run exited $rc"
+  show reference
+  exit 1
+fi
+for f in frames.xdmf checkpoint.h5; do
+  [[ -s "$REF/$f" ]] && ok "reference: $f written" || fail "reference: $f missing"
+done
+
+# ---- stop signals ------------------------------------------------------------------
+
+for signal in INT TERM; do
+  dir=$TMP/stopped_$signal
+  "$BIN" run "$CASE" "${SHORT[@]}" --out "$dir" --threads 1 </dev/null >"$TMP/stop_$signal.out" \
+    2>"$TMP/stop_$signal.err" &
+  pid=$!
+  # Wait for the first checkpoint, then a little more.
+  for _ in $(seq 100); do [[ -f "$dir/checkpoint.h5" ]] && break; sleep 0.05; done
+  sleep 0.3
+  kill -"$signal" "$pid"
+  wait "$pid"
+  rc=$?
+  if [[ $rc -eq 0 ]]; then
+    echo "note: the run ended before SIG$signal arrived; nothing to check"
+    continue
+  fi
+  if [[ $rc -ne 4 ]]; then
+    fail "SIG$signal: expected exit code 4, got $rc"
+    show "stop_$signal"
+    continue
+  fi
+  ok "SIG$signal: exit 4"
+  grep -q "stopped by SIG$signal" "$TMP/stop_$signal.out" && ok "SIG$signal: summary printed" ||
+    fail "SIG$signal: no closing summary naming the signal on stdout"
+  grep -q "mpsolid resume" "$TMP/stop_$signal.err" && ok "SIG$signal: says how to resume" ||
+    fail "SIG$signal: stderr does not say how to resume"
+  leftovers=$(find "$dir" -name '*.tmp')
+  [[ -z "$leftovers" ]] && ok "SIG$signal: no staging files left" ||
+    fail "SIG$signal: staging files left: $leftovers"
+  if $PY -c '
+import sys, csv, h5py, json
+d = sys.argv[1]
+rows = list(csv.reader(open(d + "/history.csv")))
+with h5py.File(d + "/frames.h5", "r") as f:
+    assert len(f["frames"]) == len(rows) - 1, (len(f["frames"]), len(rows))
+assert json.load(open(d + "/run.json"))["outcome"].startswith("stopped")
+' "$dir" 2>"$TMP/stop_$signal.py"; then
+    ok "SIG$signal: history.csv, frames.h5 (as many frames as rows) and run.json readable"
+  else
+    fail "SIG$signal: published outputs not readable or inconsistent: $(cat "$TMP/stop_$signal.py")"
+  fi
+  mp "resume_$signal" resume "$dir" --threads 2
+  if [[ $rc -ne 0 ]]; then
+    fail "SIG$signal: resume exited $rc"
+    show "resume_$signal"
+  else
+    same_as_reference "SIG$signal then resume at 2 threads" "$dir"
+    segments=$($PY -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["segments"]))' \
+      "$dir/run.json")
+    [[ $segments -eq 2 ]] && ok "SIG$signal: run.json lists 2 segments" ||
+      fail "SIG$signal: run.json lists $segments segments, expected 2"
+  fi
+done
+
+# ---- kills at random moments ---------------------------------------------------
+
+KILLED=$TMP/killed
+seed=${MPSOLID_TEST_SEED:-$RANDOM}
+RANDOM=$seed
+echo "kill moments from seed $seed (MPSOLID_TEST_SEED=$seed reproduces them)"
+kills=0
+attempt=0
+done_ok=0
+while [[ $attempt -lt 12 ]]; do
+  attempt=$((attempt + 1))
+  threads=$((RANDOM % 2 + 1))
+  if [[ -f "$KILLED/checkpoint.h5" ]]; then
+    cmd=(resume "$KILLED" --threads "$threads")
+  else
+    cmd=(run "$CASE" "${SHORT[@]}" --out "$KILLED" --threads "$threads")
+  fi
+  if [[ $kills -ge 6 ]]; then  # enough: let it finish
+    mp final "${cmd[@]}"
+    [[ $rc -eq 0 ]] && done_ok=1 || { fail "final ${cmd[0]} exited $rc"; show final; }
+    break
+  fi
+  delay=$(printf '0.%02d' $((RANDOM % 45 + 3)))
+  "$BIN" "${cmd[@]}" </dev/null >"$TMP/kill.out" 2>"$TMP/kill.err" &
+  pid=$!
+  sleep "$delay"
+  kill -KILL "$pid" 2>/dev/null
+  { wait "$pid"; } 2>/dev/null
+  rc=$?
+  if [[ $rc -eq 0 ]]; then
+    done_ok=1
+    echo "  ${cmd[0]} finished before the kill at ${delay} s"
+    break
+  elif [[ $rc -eq 137 ]]; then
+    kills=$((kills + 1))
+    echo "  killed ${cmd[0]} (--threads $threads) after ${delay} s"
+  else
+    fail "${cmd[*]} exited $rc (not killed)"
+    cat "$TMP/kill.err"
+    break
+  fi
+done
+if [[ $done_ok -eq 1 ]]; then
+  ok "killed $kills times and resumed each time"
+  same_as_reference "killed and resumed" "$KILLED"
+else
+  fail "the killed run never completed"
+fi
+
+# ---- going past the old end ------------------------------------------------------
+
+HALF=$TMP/half
+mp half run "$CASE" --set time.end=5e-5 --set output.frame_interval=5e-6 \
+  --set output.checkpoint_interval=5e-6 --out "$HALF" --threads 2
+mp extend resume "$HALF" --set time.end=1e-4 --threads 1
+if [[ $rc -ne 0 ]]; then
+  fail "resume --set time.end=1e-4 exited $rc"
+  show extend
+else
+  same_as_reference "run to T, resume to 2T" "$HALF"
+fi
+
+# ---- refusals ---------------------------------------------------------------------
+
+# expect_refused LABEL DIR NEEDLE -- ARGS...: exit 2, NEEDLE on stderr, DIR unchanged.
+expect_refused() {
+  local label=$1 dir=$2 needle=$3
+  shift 4
+  local before
+  before=$(snapshot "$dir")
+  mp "$label" "$@"
+  if [[ $rc -ne 2 ]]; then
+    fail "$label: expected exit code 2, got $rc"
+    show "$label"
+  elif ! grep -qF -- "$needle" "$TMP/$label.err"; then
+    fail "$label: stderr does not contain '$needle'"
+    show "$label"
+  elif [[ "$(snapshot "$dir")" != "$before" ]]; then
+    fail "$label: the folder changed"
+  else
+    ok "$label: refused (exit 2): $(head -c 300 "$TMP/$label.err")"
+  fi
+}
+
+mkdir -p "$TMP/empty"
+expect_refused no_checkpoint "$TMP/empty" "no checkpoint" -- resume "$TMP/empty"
+expect_refused already_done "$REF" "already reached" -- resume "$REF"
+expect_refused set_physics "$REF" "keeps its case" -- resume "$REF" --set l0=0.001
+expect_refused end_before "$REF" "before the checkpoint" -- resume "$REF" --set time.end=5e-5
+
+TRUNC=$TMP/truncated
+cp -r "$REF" "$TRUNC"
+truncate -s $(($(stat -c %s "$TRUNC/checkpoint.h5") / 2)) "$TRUNC/checkpoint.h5"
+expect_refused truncated "$TRUNC" "damaged" -- resume "$TRUNC" --set time.end=2e-4
+
+FLIPPED=$TMP/flipped
+cp -r "$REF" "$FLIPPED"
+$PY - "$FLIPPED/checkpoint.h5" <<'PYEOF'
+import sys, h5py
+path = sys.argv[1]
+with h5py.File(path, "r") as f:
+    offset = f["particles/vx"].id.get_offset() + 1001  # a byte inside the velocities
+with open(path, "r+b") as f:
+    f.seek(offset)
+    byte = f.read(1)
+    f.seek(offset)
+    f.write(bytes([byte[0] ^ 0x10]))
+PYEOF
+expect_refused flipped_byte "$FLIPPED" "damaged" -- resume "$FLIPPED" --set time.end=2e-4
+
+NOTH5=$TMP/not_hdf5
+cp -r "$REF" "$NOTH5"
+echo "not a checkpoint" >"$NOTH5/checkpoint.h5"
+expect_refused not_hdf5 "$NOTH5" "not an HDF5 file" -- resume "$NOTH5" --set time.end=2e-4
+
+# A checkpoint of another case (another force: same lattice, same bonds) in
+# this run's folder.
+OTHER=$TMP/other
+mp other run "$CASE" --set time.end=2e-5 --set loads.shock.force=[5000.0,0.0] --out "$OTHER" \
+  --threads 1
+FOREIGN=$TMP/foreign
+cp -r "$REF" "$FOREIGN"
+cp "$OTHER/checkpoint.h5" "$FOREIGN/checkpoint.h5"
+expect_refused foreign_case "$FOREIGN" "different run or case" -- resume "$FOREIGN" --set time.end=2e-4
+
+# A checkpoint of another lattice.
+COARSE=$TMP/coarse
+mp coarse run "$CASE" --set time.end=2e-5 --set l0=0.004 --out "$COARSE" --threads 1
+LATTICE=$TMP/lattice
+cp -r "$REF" "$LATTICE"
+cp "$COARSE/checkpoint.h5" "$LATTICE/checkpoint.h5"
+expect_refused foreign_lattice "$LATTICE" "different run or case" -- resume "$LATTICE" --set time.end=2e-4
+
+echo
+if [[ $failures -gt 0 ]]; then
+  echo "test_resume: $failures check(s) FAILED"
+  exit 1
+fi
+echo "test_resume: all checks passed"

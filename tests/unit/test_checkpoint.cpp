@@ -1,0 +1,224 @@
+// Checkpoints: a write-read round trip keeps every bit; a simulation resumed
+// from a checkpoint file (set up afresh from the stored case, then the state
+// overwritten) goes on to the same bits as one that never stopped, at another
+// thread count too, before and after a load switches on; a checkpoint that
+// does not fit is refused.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "src/case_reader.hpp"
+#include "src/checkpoint.hpp"
+#include "src/parallel.hpp"
+#include "tests/support/test_cases.hpp"
+
+namespace mpsolid {
+namespace {
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ =
+        std::filesystem::temp_directory_path() /
+        ("mpsolid_checkpoint_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Every evolving quantity of two simulations is equal bit for bit.
+void expect_same_state(Simulation& a, Simulation& b) {
+  ASSERT_EQ(a.step(), b.step());
+  EXPECT_TRUE(testing::same_bits(a.particles(), b.particles()));
+  ASSERT_EQ(a.state().rigid_bodies.size(), b.state().rigid_bodies.size());
+  for (std::size_t k = 0; k < a.state().rigid_bodies.size(); ++k) {
+    const RigidBody &u = a.state().rigid_bodies[k], &v = b.state().rigid_bodies[k];
+    for (auto [p, q] : {std::pair{u.xg, v.xg},
+                        {u.yg, v.yg},
+                        {u.angle, v.angle},
+                        {u.vx, v.vx},
+                        {u.vy, v.vy},
+                        {u.omega, v.omega}})
+      EXPECT_TRUE(same_bits(p, q)) << u.name;
+  }
+  ASSERT_EQ(a.state().loads.size(), b.state().loads.size());
+  for (std::size_t k = 0; k < a.state().loads.size(); ++k) {
+    EXPECT_EQ(a.state().loads[k].active, b.state().loads[k].active);
+    EXPECT_TRUE(same_bits(a.state().loads[k].cx_on, b.state().loads[k].cx_on));
+    EXPECT_TRUE(same_bits(a.state().loads[k].cy_on, b.state().loads[k].cy_on));
+  }
+  const Diagnostics da = a.diagnostics(), db = b.diagnostics();
+  EXPECT_TRUE(same_bits(da.kinetic_energy, db.kinetic_energy));
+  EXPECT_TRUE(same_bits(da.strain_energy, db.strain_energy));
+  EXPECT_TRUE(same_bits(da.external_work, db.external_work));
+  EXPECT_TRUE(same_bits(da.angular_momentum, db.angular_momentum));
+}
+
+Checkpoint full_checkpoint(Simulation& sim) {
+  Checkpoint c = capture_state(sim);
+  c.case_toml = sim.spec().resolved_toml;
+  c.bond_hash = sim.state().bonds.hash();
+  c.run_id = 42;
+  c.frames = 3;
+  c.history_bytes = 1234;
+  c.written_by = "test";
+  c.segments = {"{\"a\": 1}", "{\"b\": 2}"};
+  return c;
+}
+
+// Runs `first` steps, checkpoints to a file, resumes a fresh simulation set
+// up from the stored case at `threads`, and runs both to `first + second`.
+void expect_resume_is_seamless(const std::vector<std::string>& overrides, std::int64_t first,
+                               std::int64_t second, int threads) {
+  TempDir dir;
+  set_thread_count(1);
+  Simulation uninterrupted(testing::rod_case(overrides));
+  uninterrupted.advance(first);
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  write_checkpoint(path, full_checkpoint(uninterrupted));
+  uninterrupted.advance(second);
+
+  set_thread_count(threads);
+  const Checkpoint c = read_checkpoint(path);
+  Simulation resumed(parse_case(c.case_toml, path.string()));
+  restore_state(resumed, c, path.string());
+  EXPECT_EQ(resumed.step(), first);
+  resumed.advance(second);
+  set_thread_count(1);
+  expect_same_state(uninterrupted, resumed);
+  set_thread_count(available_cores());
+}
+
+TEST(Checkpoint, RoundTripKeepsEveryBit) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  sim.advance(50);
+  const Checkpoint c = full_checkpoint(sim);
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  const std::uintmax_t bytes = write_checkpoint(path, c);
+  EXPECT_EQ(bytes, std::filesystem::file_size(path));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "checkpoint.h5.tmp"));
+  const Checkpoint r = read_checkpoint(path);
+  EXPECT_EQ(r.step, 50);
+  EXPECT_EQ(r.case_toml, c.case_toml);
+  EXPECT_EQ(r.bond_hash, c.bond_hash);
+  EXPECT_EQ(r.run_id, c.run_id);
+  EXPECT_EQ(r.frames, c.frames);
+  EXPECT_EQ(r.history_bytes, c.history_bytes);
+  EXPECT_EQ(r.written_by, c.written_by);
+  EXPECT_EQ(r.segments, c.segments);
+  ASSERT_EQ(r.particle_arrays.size(), 6u);
+  for (std::size_t a = 0; a < c.particle_arrays.size(); ++a) {
+    EXPECT_EQ(r.particle_arrays[a].first, c.particle_arrays[a].first);
+    const auto &u = r.particle_arrays[a].second, &v = c.particle_arrays[a].second;
+    ASSERT_EQ(u.size(), v.size());
+    EXPECT_EQ(std::memcmp(u.data(), v.data(), u.size() * sizeof(double)), 0);
+  }
+  ASSERT_EQ(r.rigid_bodies.size(), 1u);
+  EXPECT_EQ(r.rigid_bodies[0].name, "plate");
+  EXPECT_TRUE(same_bits(r.rigid_bodies[0].xg, c.rigid_bodies[0].xg));
+  EXPECT_TRUE(same_bits(r.rigid_bodies[0].vx, c.rigid_bodies[0].vx));
+  ASSERT_EQ(r.loads.size(), 1u);
+  EXPECT_TRUE(r.loads[0].active);
+  EXPECT_TRUE(same_bits(r.loads[0].cx_on, c.loads[0].cx_on));
+}
+
+// Arrays are stored in id order: storage order is an implementation detail.
+TEST(Checkpoint, ParticleArraysAreInIdOrder) {
+  Simulation sim(testing::rod_case());
+  sim.advance(10);
+  const Checkpoint c = capture_state(sim);
+  const ParticleStore& p = sim.particles();
+  ASSERT_EQ(c.particle_arrays[0].first, "x");
+  for (std::size_t i = 0; i < p.size(); ++i)
+    EXPECT_TRUE(same_bits(c.particle_arrays[0].second[static_cast<std::size_t>(p.id[i])], p.x[i]));
+}
+
+TEST(Checkpoint, ResumedRunIsBitIdentical) {
+  expect_resume_is_seamless({}, 400, 400, 1);
+}
+
+TEST(Checkpoint, ResumedRunIsBitIdenticalAtTwoThreads) {
+  expect_resume_is_seamless({"l0=0.001"}, 100, 100, 2);
+}
+
+// The load's switch-on (and its centroid record) is part of the state: a
+// checkpoint before the switch-on, and one after it.
+TEST(Checkpoint, ResumeAcrossALoadSwitchOn) {
+  expect_resume_is_seamless({"loads.shock.start=1.5e-6"}, 100, 100, 2);
+  expect_resume_is_seamless({"loads.shock.start=0.5e-6"}, 100, 100, 1);
+}
+
+TEST(Checkpoint, RefusesAnotherBondTable) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  Checkpoint c = full_checkpoint(sim);
+  c.bond_hash ^= 1;  // as if another build had made the table
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  write_checkpoint(path, c);
+  Simulation fresh(testing::rod_case());
+  try {
+    restore_state(fresh, read_checkpoint(path), path.string());
+    FAIL() << "restored a checkpoint with another bond table";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bond table differs"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {
+  Simulation sim(testing::rod_case());
+  Checkpoint c = full_checkpoint(sim);
+  Checkpoint missing = c;
+  missing.particle_arrays.pop_back();
+  EXPECT_THROW(restore_state(sim, missing, "test"), InputError);
+  Checkpoint shorter = c;
+  for (auto& [name, values] : shorter.particle_arrays) values.pop_back();
+  EXPECT_THROW(restore_state(sim, shorter, "test"), InputError);
+  Checkpoint renamed = c;
+  renamed.rigid_bodies[0].name = "lid";
+  EXPECT_THROW(restore_state(sim, renamed, "test"), InputError);
+}
+
+TEST(Checkpoint, RefusesADamagedFile) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  sim.advance(5);
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  write_checkpoint(path, full_checkpoint(sim));
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // The particle arrays are the bulk of the file: a flipped bit there is
+  // invisible to HDF5 and must be found by the content hash.
+  const double needle = sim.particles().x[sim.particles().storage_of_id()[777]];
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&needle), 8));
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 3] = static_cast<char>(bytes[at + 3] ^ 0x04);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  try {
+    read_checkpoint(path);
+    FAIL() << "read a damaged checkpoint";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("damaged"), std::string::npos) << e.what();
+  }
+  std::filesystem::resize_file(path, bytes.size() / 3);
+  EXPECT_THROW(read_checkpoint(path), InputError);
+  EXPECT_THROW(read_checkpoint(dir.path() / "none.h5"), InputError);
+}
+
+}  // namespace
+}  // namespace mpsolid
