@@ -213,8 +213,9 @@ std::string resolved_toml(const CaseSpec& c) {
                      format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
   out += fmt::format("checkpoint_interval = {}\ncompression = {}\n",
                      format_number(c.checkpoint_interval), c.compression);
-  out +=
-      fmt::format("\n[finite_strain]\nhourglass = {}\n", format_number(c.model_options.hourglass));
+  out += fmt::format("\n[finite_strain]\nhourglass = {}\nhourglass_form = \"{}\"\n",
+                     format_number(c.model_options.hourglass),
+                     c.model_options.consistent_hourglass ? "consistent" : "frozen");
   out += fmt::format(
       "\n[stability]\ncheck_interval = {}\nmax_speed = {}\nmin_jacobian = {}\nenergy_tolerance = "
       "{}\n",
@@ -401,7 +402,12 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     c.model_options.hourglass = r.number_or("hourglass", c.model_options.hourglass);
     r.range_check("hourglass", c.model_options.hourglass, c.model_options.hourglass >= 0,
                   "[0, inf) (0 switches the penalty off)");
-    r.finish({"hourglass"});
+    const std::string form = r.string_or("hourglass_form", "consistent");
+    if (form != "consistent" && form != "frozen")
+      r.fail("hourglass_form",
+             fmt::format("unknown form '{}' (allowed: consistent, frozen)", form));
+    c.model_options.consistent_hourglass = form == "consistent";
+    r.finish({"hourglass", "hourglass_form"});
   }
 
   // Blow-up checks.

@@ -1,5 +1,7 @@
 #include "src/simulation.hpp"
 
+#include <algorithm>
+
 namespace mpsolid {
 
 Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
@@ -61,7 +63,9 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   if (!speed.ok) return speed;
   const Diagnostics d = current_diagnostics();
   if (diagnostics_out) *diagnostics_out = d;
-  StabilityVerdict energy = check_energy(d, initial_energy_, spec_.stability.energy_tolerance);
+  state_.peak_work = std::max(state_.peak_work, d.external_work);
+  StabilityVerdict energy =
+      check_energy(d, initial_energy_, state_.peak_work, spec_.stability.energy_tolerance);
   energy.particle = speed.particle;  // no single culprit: name the fastest particle
   return energy;
 }

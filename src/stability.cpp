@@ -41,15 +41,17 @@ StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
   return v;
 }
 
-StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double tolerance) {
+StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
+                              double tolerance) {
   StabilityVerdict v;
-  const double scale = std::max(std::abs(d.external_work), std::abs(initial_energy));
+  const double scale = std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy)});
   v.value = d.kinetic_energy + d.strain_energy - d.external_work - initial_energy;
   v.limit = tolerance * scale;
   if (scale > 0.0 && std::abs(v.value) > v.limit) {
     v.ok = false;
     v.criterion = fmt::format(
-        "energy balance: KE + PE - W - E0 = {:.4g} J, more than {:g} of max(W, E0) = {:.4g} J",
+        "energy balance: KE + PE - W - E0 = {:.4g} J, more than {:g} of max(peak W, E0) = "
+        "{:.4g} J",
         v.value, tolerance, scale);
   }
   return v;

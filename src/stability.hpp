@@ -26,8 +26,10 @@ StabilityVerdict check_finite(const ParticleStore& p);
 // The fastest moving particle against the limit speed.
 StabilityVerdict check_speed(const ParticleStore& p, double limit_speed);
 
-// |KE + PE - W - E0| against tolerance * max(W, E0).
-StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double tolerance);
+// |KE + PE - W - E0| against tolerance * max(peak W, E0); the peak external
+// work so far, not the current W, which falls when the body pushes back.
+StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
+                              double tolerance);
 
 // Largest dilatational wave speed sqrt((lambda + 2 mu) / rho) of the case's materials.
 double dilatational_wave_speed(const std::vector<Material>& materials);

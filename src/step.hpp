@@ -22,6 +22,9 @@ struct SolverState {
   std::vector<StepLoad> loads;
   double dt = 0;
   std::int64_t step = 0;
+  // The largest external work seen by a stability check: the energy scale of
+  // the balance check, which must not shrink when a load gets work back.
+  double peak_work = 0;
 };
 
 // Fields that depend on the current positions only: half angles, strain and
