@@ -150,7 +150,9 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
     last_good = StateSnapshot::capture(sim.state());
     if (sim.step() == next_frame) write_frame(d);
     if (sim.step() == total) break;
-    if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0) checkpoint("interrupted");
+    if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0 &&
+        sim.step() > outputs.last_checkpoint_step())
+      checkpoint("interrupted");
     if (stop_requested()) {
       facts.outcome = fmt::format("stopped by {}", stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT");
       break;
