@@ -112,6 +112,51 @@ def check_xdmf(folder):
               "; ".join(bad[:5]))
 
 
+PARAVIEW_SCRIPT = r'''
+import sys
+from paraview.simple import XDMFReader
+r = XDMFReader(FileNames=[sys.argv[1]])
+r.UpdatePipelineInformation()
+times = list(r.TimestepValues)
+r.UpdatePipeline(times[-1])
+info = r.GetDataInformation()
+ranges = {name: r.PointData[name].GetRange(0) for name in r.PointData.keys()}
+print("RESULT", repr((times, info.GetNumberOfPoints(), ranges)))
+'''
+
+
+def check_paraview(folder):
+    """ParaView's own Xdmf reader, where ParaView is installed (Debian's
+    paraview and python3-paraview; not needed otherwise)."""
+    pvbatch = shutil.which("pvbatch") or shutil.which("pvbatch3.11")
+    if not pvbatch:
+        print("skip: ParaView (pvbatch) not installed; its Xdmf reader is not tried")
+        return
+    script = os.path.join(folder, "pvcheck.py")
+    with open(script, "w") as f:
+        f.write(PARAVIEW_SCRIPT)
+    result = subprocess.run([pvbatch, "--force-offscreen-rendering", script,
+                             os.path.join(folder, "frames.xdmf")],
+                            capture_output=True, text=True, timeout=300)
+    os.remove(script)
+    lines = [l for l in result.stdout.splitlines() if l.startswith("RESULT ")]
+    if not check(result.returncode == 0 and lines, "ParaView's Xdmf reader opens frames.xdmf",
+                 result.stderr[-500:]):
+        return
+    times, points, ranges = eval(lines[0][len("RESULT "):])
+    with h5py.File(os.path.join(folder, "frames.h5"), "r") as f:
+        names = sorted(f["frames"])
+        expected_times = [f["frames"][n].attrs["time"] for n in names]
+        last = f["frames"][names[-1]]
+        expected = {k: (float(last[k][()].min()), float(last[k][()].max()))
+                    for k in ("pressure", "volumetric_strain", "rotation", "id")}
+        n = last["id"].shape[0]
+    check(times == expected_times and points == n and set(ranges) == FIELDS
+          and all(tuple(ranges[k]) == v for k, v in expected.items()),
+          "ParaView reads every frame, particle and field with the stored values",
+          f"{times} {points} {ranges}")
+
+
 def check_compression(plain, packed):
     with h5py.File(os.path.join(plain, "frames.h5"), "r") as a, \
             h5py.File(os.path.join(packed, "frames.h5"), "r") as b:
@@ -177,6 +222,7 @@ def main():
         if not check(run_mpsolid(binary, plain) == 0, "a short run"):
             return 1
         check_xdmf(plain)
+        check_paraview(plain)
         if check(run_mpsolid(binary, packed, "output.compression=4") == 0,
                  "a short run with output.compression = 4"):
             check_compression(plain, packed)
