@@ -26,9 +26,16 @@ MODELS = ["paper", "paper_conservative", "finite_strain"]
 PAPER_DT = 1e-8
 
 
+def cell_dir(args, model, l0_mm, force_kn, dt):
+    return os.path.join(args.work, f"{model}_l0{l0_mm:g}mm_{force_kn:g}kN_dt{dt:.3e}")
+
+
+def cached(args, model, l0_mm, force_kn, dt):
+    return os.path.exists(os.path.join(cell_dir(args, model, l0_mm, force_kn, dt), "run.json"))
+
+
 def run_cell(args, model, l0_mm, force_kn, dt):
-    key = f"{model}_l0{l0_mm:g}mm_{force_kn:g}kN_dt{dt:.3e}"
-    out = os.path.join(args.work, key)
+    out = cell_dir(args, model, l0_mm, force_kn, dt)
     report = os.path.join(out, "run.json")
     if not os.path.exists(report):
         # Checks every ~5 us of simulated time whatever the step.
@@ -149,7 +156,8 @@ def main():
     p.add_argument("--bisections", type=int, default=7)
     p.add_argument("--dt-paper-only", action="store_true", help="skip the largest-stable-dt rows")
     p.add_argument("--skip-paper-dt", nargs="*", default=[], metavar="MODEL@L0",
-                   help="cells at 10 ns not to run (e.g. finite_strain@1), shown as 'not run'")
+                   help="rows at 10 ns not to run (e.g. finite_strain@1) but for cells already "
+                        "in --work; the rest show as 'not run'")
     args = p.parse_args()
     FORCES_KN[:] = args.forces
     if not os.path.exists(args.binary):
@@ -168,7 +176,8 @@ def main():
         futures = {}
         for key in plan:
             model, l0, dt, label, skip = key
-            futures[key] = [None if skip else pool.submit(run_cell, args, model, l0, f, dt)
+            futures[key] = [None if skip and not cached(args, model, l0, f, dt)
+                            else pool.submit(run_cell, args, model, l0, f, dt)
                             for f in FORCES_KN]
         rows = [((m, l, d, lab), [f.result() if f else None for f in futures[(m, l, d, lab, s)]])
                 for (m, l, d, lab, s) in plan]
