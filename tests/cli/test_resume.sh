@@ -32,8 +32,8 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 ok() { echo "ok: $*"; }
 
-# 10,000 steps, a frame and a checkpoint every 500 steps.
-SHORT=(--set time.end=1e-4 --set output.frame_interval=5e-6 --set output.checkpoint_interval=5e-6)
+# 6,000 steps, a frame and a checkpoint every 300 steps.
+SHORT=(--set time.end=6e-5 --set output.frame_interval=3e-6 --set output.checkpoint_interval=3e-6)
 
 # mp LABEL ARGS...: mpsolid ARGS in the foreground; exit code in $rc.
 mp() {
@@ -148,7 +148,7 @@ while [[ $attempt -lt 12 ]]; do
     [[ $rc -eq 0 ]] && done_ok=1 || { fail "final ${cmd[0]} exited $rc"; show final; }
     break
   fi
-  delay=$(printf '0.%02d' $((RANDOM % 45 + 3)))
+  delay=$(printf '0.%02d' $((RANDOM % 28 + 3)))
   "$BIN" "${cmd[@]}" </dev/null >"$TMP/kill.out" 2>"$TMP/kill.err" &
   pid=$!
   sleep "$delay"
@@ -178,11 +178,11 @@ fi
 # ---- going past the old end ------------------------------------------------------
 
 HALF=$TMP/half
-mp half run "$CASE" --set time.end=5e-5 --set output.frame_interval=5e-6 \
-  --set output.checkpoint_interval=5e-6 --out "$HALF" --threads 2
-mp extend resume "$HALF" --set time.end=1e-4 --threads 1
+mp half run "$CASE" --set time.end=3e-5 --set output.frame_interval=3e-6 \
+  --set output.checkpoint_interval=3e-6 --out "$HALF" --threads 2
+mp extend resume "$HALF" --set time.end=6e-5 --threads 1
 if [[ $rc -ne 0 ]]; then
-  fail "resume --set time.end=1e-4 exited $rc"
+  fail "resume --set time.end=6e-5 exited $rc"
   show extend
 else
   same_as_reference "run to T, resume to 2T" "$HALF"
@@ -214,7 +214,7 @@ mkdir -p "$TMP/empty"
 expect_refused no_checkpoint "$TMP/empty" "no checkpoint" -- resume "$TMP/empty"
 expect_refused already_done "$REF" "already reached" -- resume "$REF"
 expect_refused set_physics "$REF" "keeps its case" -- resume "$REF" --set l0=0.001
-expect_refused end_before "$REF" "before the checkpoint" -- resume "$REF" --set time.end=5e-5
+expect_refused end_before "$REF" "before the checkpoint" -- resume "$REF" --set time.end=3e-5
 
 TRUNC=$TMP/truncated
 cp -r "$REF" "$TRUNC"

@@ -151,7 +151,7 @@ TEST(Checkpoint, ResumedRunIsBitIdentical) {
 }
 
 TEST(Checkpoint, ResumedRunIsBitIdenticalAtTwoThreads) {
-  expect_resume_is_seamless({"l0=0.001"}, 100, 100, 2);
+  expect_resume_is_seamless({"l0=0.001"}, 40, 40, 2);
 }
 
 // The load's switch-on (and its centroid record) is part of the state: a
