@@ -21,11 +21,18 @@ std::uint64_t new_run_id() {
   return id == 0 ? 1 : id;
 }
 
+// Temporary files a killed process may have left behind.
+void remove_leftovers(const std::filesystem::path& dir) {
+  for (const char* name : {"checkpoint.h5.tmp", "history.csv.snapshot.tmp",
+                           "frames.h5.snapshot.tmp", "frames.xdmf.tmp", "run.json.tmp"})
+    std::filesystem::remove(dir / name);
+}
+
 // Removes an old checkpoint before anything else of a fresh run is written.
 const std::filesystem::path& prepare_fresh(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   std::filesystem::remove(RunOutputs::checkpoint_path(dir));
-  std::filesystem::remove(staging_path(RunOutputs::checkpoint_path(dir)));
+  remove_leftovers(dir);
   return dir;
 }
 
@@ -63,6 +70,7 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const Simulation& sim,
       previous_segments_(from.segments),
       last_checkpoint_step_(from.step),
       last_frame_step_(-1) {
+  remove_leftovers(dir);
   write_file_atomically(dir / "case.resolved.toml", sim.spec().resolved_toml);
 }
 

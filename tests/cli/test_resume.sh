@@ -171,6 +171,9 @@ done
 if [[ $done_ok -eq 1 ]]; then
   ok "killed $kills times and resumed each time"
   same_as_reference "killed and resumed" "$KILLED"
+  leftovers=$(find "$KILLED" -name '*.tmp')
+  [[ -z "$leftovers" ]] && ok "killed and resumed: no temporary files left" ||
+    fail "killed and resumed: temporary files left: $leftovers"
 else
   fail "the killed run never completed"
 fi
