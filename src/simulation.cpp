@@ -64,6 +64,10 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   const Diagnostics d = current_diagnostics();
   if (diagnostics_out) *diagnostics_out = d;
   state_.peak_work = std::max(state_.peak_work, d.external_work);
+  // Symplectic Euler's velocities lag the positions by half a step, so after
+  // k steps the balance is off by about 1/(2k) of the work even in an exact
+  // run: the check waits until that is 20 times below the tolerance.
+  if (static_cast<double>(state_.step) < 10.0 / spec_.stability.energy_tolerance) return speed;
   StabilityVerdict energy =
       check_energy(d, initial_energy_, state_.peak_work, spec_.stability.energy_tolerance);
   energy.particle = speed.particle;  // no single culprit: name the fastest particle

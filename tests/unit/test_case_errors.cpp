@@ -436,6 +436,7 @@ TEST(GoodCases, ShippedCasesParse) {
 
   const CaseSpec strong = read_case(shipped("shock_rod_55kN.toml"));
   EXPECT_EQ(strong.name, "shock_rod_55kN");
+  EXPECT_EQ(strong.model, "finite_strain");
   ASSERT_EQ(strong.loads.size(), 1u);
   EXPECT_DOUBLE_EQ(strong.loads[0].force[0], 55900.0);
   EXPECT_EQ(strong.step_count(), 1000000);
