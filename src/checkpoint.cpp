@@ -14,7 +14,7 @@ namespace mpsolid {
 
 namespace {
 constexpr const char* kFormat = "mpsolid checkpoint";
-constexpr std::int64_t kFormatVersion = 1;
+constexpr std::int64_t kFormatVersion = 2;  // 2: peak_work
 
 // FNV-1a over everything stored: a damaged byte anywhere is found on reading.
 class Hasher {
@@ -41,6 +41,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
   Hasher h;
   h.value(kFormatVersion);
   h.value(c.step);
+  h.value(c.peak_work);
   h.text(c.case_toml);
   h.value(c.bond_hash);
   h.value(c.run_id);
@@ -80,6 +81,7 @@ std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
 Checkpoint capture_state(Simulation& sim) {
   Checkpoint c;
   c.step = sim.step();
+  c.peak_work = sim.state().peak_work;
   ParticleStore& p = sim.particles();
   const std::vector<std::size_t> order = p.storage_of_id();
   for (const NamedArray& a : particle_state_arrays(p)) {
@@ -151,6 +153,7 @@ void restore_state(Simulation& sim, const Checkpoint& c, const std::string& sour
     s.loads[l].cy_on = c.loads[l].cy_on;
   }
   s.step = c.step;
+  s.peak_work = c.peak_work;
 }
 
 std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
@@ -160,6 +163,7 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     file.write_string("format", kFormat);
     file.set_attribute<std::int64_t>("format_version", kFormatVersion);
     file.set_attribute<std::int64_t>("step", c.step);
+    file.set_attribute<double>("peak_work", c.peak_work);
     file.set_attribute<std::uint64_t>("bond_hash", c.bond_hash);
     file.set_attribute<std::uint64_t>("run_id", c.run_id);
     file.set_attribute<std::int64_t>("frames", c.frames);
@@ -226,6 +230,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
       throw h5::Error(fmt::format("checkpoint format version {}, this build reads version {}",
                                   version, kFormatVersion));
     c.step = file.attribute<std::int64_t>("step");
+    c.peak_work = file.attribute<double>("peak_work");
     c.bond_hash = file.attribute<std::uint64_t>("bond_hash");
     c.run_id = file.attribute<std::uint64_t>("run_id");
     c.frames = file.attribute<std::int64_t>("frames");

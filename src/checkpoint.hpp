@@ -42,6 +42,7 @@ struct LoadState {
 
 struct Checkpoint {
   std::int64_t step = 0;
+  double peak_work = 0;               // SolverState::peak_work (the energy check's scale)
   std::string case_toml;              // the resolved case (CaseSpec::resolved_toml)
   std::uint64_t bond_hash = 0;        // BondTable::hash() of the run's bond table
   std::uint64_t run_id = 0;           // ties the checkpoint to its history.csv and frames.h5
