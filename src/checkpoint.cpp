@@ -74,8 +74,9 @@ std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
 }  // namespace
 
 std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
-  return {{"x", &p.x},   {"y", &p.y},         {"vx", &p.vx},
-          {"vy", &p.vy}, {"theta", &p.theta}, {"omega", &p.omega}};
+  std::vector<NamedArray> arrays;
+  for (const StateArray& a : kStateArrays) arrays.push_back({a.name, &(p.*a.member)});
+  return arrays;
 }
 
 Checkpoint capture_state(Simulation& sim) {

@@ -22,11 +22,7 @@ struct NamedArray {
   std::vector<double>* values;
 };
 
-// The per-particle arrays that evolve in time: positions, velocities,
-// rotations and angular velocities. The rest of the store is constant from
-// set-up (x0, masses, ids, ...) or recomputed from these every step (half
-// angles, strain, pressure, forces, torques). A model with per-particle
-// state of its own adds its arrays here; checkpoints then carry them.
+// kStateArrays of `p`, by name (see particle_store.hpp).
 std::vector<NamedArray> particle_state_arrays(ParticleStore& p);
 
 struct RigidBodyState {

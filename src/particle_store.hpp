@@ -47,4 +47,17 @@ struct ParticleStore {
   std::vector<std::size_t> storage_of_id() const;
 };
 
+// The per-particle arrays that evolve in time: positions, velocities,
+// rotations and angular velocities. The rest of the store is constant from
+// set-up (x0, masses, ids, ...) or recomputed from these every step (half
+// angles, strain, pressure, forces, torques). Snapshots and checkpoints copy
+// exactly these; a model with per-particle state of its own adds it here.
+struct StateArray {
+  const char* name;
+  std::vector<double> ParticleStore::*member;
+};
+inline constexpr StateArray kStateArrays[] = {
+    {"x", &ParticleStore::x},   {"y", &ParticleStore::y},         {"vx", &ParticleStore::vx},
+    {"vy", &ParticleStore::vy}, {"theta", &ParticleStore::theta}, {"omega", &ParticleStore::omega}};
+
 }  // namespace mpsolid

@@ -10,7 +10,8 @@ namespace mpsolid {
 
 struct StateSnapshot {
   std::int64_t step = -1;
-  std::vector<double> x, y, vx, vy, theta, omega;
+  double peak_work = 0;
+  std::vector<std::vector<double>> arrays;  // kStateArrays, in that order
   std::vector<RigidBody> rigid_bodies;
   std::vector<StepLoad> loads;
 
@@ -20,21 +21,18 @@ struct StateSnapshot {
 };
 
 inline StateSnapshot StateSnapshot::capture(const SolverState& s) {
-  const ParticleStore& p = s.particles;
-  return {s.step, p.x, p.y, p.vx, p.vy, p.theta, p.omega, s.rigid_bodies, s.loads};
+  StateSnapshot snap{s.step, s.peak_work, {}, s.rigid_bodies, s.loads};
+  for (const StateArray& a : kStateArrays) snap.arrays.push_back(s.particles.*a.member);
+  return snap;
 }
 
 inline void StateSnapshot::restore(SolverState& s) const {
-  ParticleStore& p = s.particles;
-  p.x = x;
-  p.y = y;
-  p.vx = vx;
-  p.vy = vy;
-  p.theta = theta;
-  p.omega = omega;
+  std::size_t k = 0;
+  for (const StateArray& a : kStateArrays) s.particles.*a.member = arrays[k++];
   s.rigid_bodies = rigid_bodies;
   s.loads = loads;
   s.step = step;
+  s.peak_work = peak_work;
 }
 
 }  // namespace mpsolid
