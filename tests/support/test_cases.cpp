@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstring>
 
 namespace mpsolid::testing {
@@ -45,6 +46,12 @@ y = [{y0}, {y1}]
                         fmt::arg("x0", -3 * l0), fmt::arg("y0", -2 * l0),
                         fmt::arg("y1", (ny + 2) * l0));
   return parse_case(text, "free_block.toml", {"model=" + model});
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
 }
 
 bool same_bits(const ParticleStore& a, const ParticleStore& b) {

@@ -18,6 +18,9 @@ CaseSpec rod_case(const std::vector<std::string>& overrides = {});
 CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt = 1e-7,
                          const std::string& model = "paper");
 
+// Largest magnitude in v (0 for an empty v).
+double max_abs(const std::vector<double>& v);
+
 // Every state array of two stores is equal bit for bit.
 bool same_bits(const ParticleStore& a, const ParticleStore& b);
 

@@ -12,12 +12,6 @@
 namespace mpsolid {
 namespace {
 
-double max_abs(const std::vector<double>& v, Range r) {
-  double m = 0;
-  for (std::size_t i = r.begin; i < r.end; ++i) m = std::max(m, std::abs(v[i]));
-  return m;
-}
-
 TEST(RigidMotion, TranslatedAndRotatedBlockIsStressFree) {
   for (double angle : {1.0, -2.5, 3.14159}) {
     Simulation sim(testing::free_block_case(12, 7, false));
@@ -34,16 +28,16 @@ TEST(RigidMotion, TranslatedAndRotatedBlockIsStressFree) {
     // carry round-off of order 1e-16 m, a strain of 1e-13 at l0 = 1 mm: the
     // tolerance below is a strain-equivalent of 1e-11.
     const double scale = p.mu[0] * 1e-3 * sim.spec().l0 * sim.spec().depth;
-    EXPECT_LT(max_abs(p.strain, p.all()), 1e-12) << "angle " << angle;
-    EXPECT_LT(max_abs(p.fx, p.all()), 1e-8 * scale);
-    EXPECT_LT(max_abs(p.fy, p.all()), 1e-8 * scale);
-    EXPECT_LT(max_abs(p.torque, p.all()), 1e-8 * scale * sim.spec().l0);
+    EXPECT_LT(testing::max_abs(p.strain), 1e-12) << "angle " << angle;
+    EXPECT_LT(testing::max_abs(p.fx), 1e-8 * scale);
+    EXPECT_LT(testing::max_abs(p.fy), 1e-8 * scale);
+    EXPECT_LT(testing::max_abs(p.torque), 1e-8 * scale * sim.spec().l0);
     // Rotating positions without the particles' own rotation is a strain: the
     // check above is not vacuous.
     for (std::size_t i = 0; i < p.size(); ++i) p.theta[i] = 0.0;
     sim.refresh_fields();
     PaperModel().compute_forces(p, sim.state().bonds, p.moving());
-    EXPECT_GT(max_abs(p.fx, p.all()), scale);
+    EXPECT_GT(testing::max_abs(p.fx), scale);
   }
 }
 

@@ -14,12 +14,6 @@
 namespace mpsolid {
 namespace {
 
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-
 TEST(PaperModel, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case());
   ParticleStore& p = sim.particles();
@@ -37,7 +31,7 @@ TEST(PaperModel, KernelsMatchThePlainReference) {
 
   auto compare = [&](const std::vector<double>& fast, const std::vector<double>& slow,
                      std::size_t begin, const char* what) {
-    const double scale = max_abs(slow);
+    const double scale = testing::max_abs(slow);
     ASSERT_GT(scale, 0.0) << what;
     for (std::size_t i = begin; i < p.size(); ++i)
       ASSERT_NEAR(fast[i], slow[i], 1e-11 * scale) << what << " of particle " << i;

@@ -16,12 +16,6 @@
 namespace mpsolid {
 namespace {
 
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-
 void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, 1.0);
@@ -40,7 +34,7 @@ TEST(PaperConservative, KernelsMatchThePlainReference) {
   PaperConservativeModel().compute_forces(p, sim.state().bonds, p.moving());
   const auto ref = reference::paper_model(p, sim.state().bonds, true);
   const auto plain = reference::paper_model(p, sim.state().bonds, false);
-  const double fscale = max_abs(ref.fx), tscale = max_abs(ref.torque);
+  const double fscale = testing::max_abs(ref.fx), tscale = testing::max_abs(ref.torque);
   double extra = 0;  // how much the consistent terms change the force
   for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
     ASSERT_NEAR(p.fx[i], ref.fx[i], 1e-11 * fscale) << i;
@@ -105,7 +99,7 @@ TEST_P(FiniteStrainForms, KernelsMatchThePlainReference) {
   model.compute_strain(p, sim.state().bonds, p.all());
   model.compute_forces(p, sim.state().bonds, p.moving());
   const auto ref = reference::finite_strain_model(p, sim.state().bonds, 1.0, consistent);
-  const double scale = max_abs(ref.fx);
+  const double scale = testing::max_abs(ref.fx);
   ASSERT_GT(scale, 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     ASSERT_NEAR(model.jacobian()[i], ref.jacobian[i], 1e-12) << i;
