@@ -90,8 +90,8 @@ def describe(cell):
     if stable(cell):
         return "stable"
     crit = cell["criterion"]
-    short = ("inverted bond" if "inside out" in crit else "J collapse" if "J" in crit
-             else "speed" if "speed" in crit else "energy" if "energy" in crit
+    short = ("inverted bond" if "inside out" in crit else "energy" if "energy" in crit
+             else "J collapse" if "det F" in crit else "speed" if "speed" in crit
              else "non-finite" if "non-finite" in crit else crit)
     return f"{cell['fail_time'] * 1e3:.3g} ms, {short}"
 
@@ -121,6 +121,7 @@ def write_outputs(args, rows):
     fig, ax = plt.subplots(figsize=(9, 0.45 * len(rows) + 1.5))
     for r, (key, cells) in enumerate(rows):
         for c, cell in enumerate(cells):
+            ink = "black"
             if cell is None:
                 color, text = "#dddddd", "not run"
             elif stable(cell):
@@ -129,8 +130,9 @@ def write_outputs(args, rows):
                 frac = min(1.0, cell["fail_time"] / args.end)
                 color = plt.cm.Reds(0.9 - 0.6 * frac)
                 text = f"{cell['fail_time'] * 1e3:.2g} ms"
+                ink = "white" if frac < 0.5 else "black"
             ax.add_patch(plt.Rectangle((c, r), 1, 1, color=color, ec="white"))
-            ax.text(c + 0.5, r + 0.5, text, ha="center", va="center", fontsize=8)
+            ax.text(c + 0.5, r + 0.5, text, ha="center", va="center", fontsize=8, color=ink)
     ax.set_xlim(0, len(FORCES_KN))
     ax.set_ylim(len(rows), 0)
     ax.set_xticks([c + 0.5 for c in range(len(FORCES_KN))])
