@@ -52,13 +52,13 @@ std::string failure_json(const Simulation& sim, const StabilityVerdict& v,
   const ParticleStore& p = sim.particles();
   const std::size_t i = v.particle;
   return fmt::format(
-      "{{\"criterion\": \"{}\", \"time\": {:.17g}, \"step\": {}, \"particle_id\": {}, "
-      "\"body\": \"{}\", \"initial_position\": [{:.17g}, {:.17g}], \"position\": [{:.17g}, "
+      "{{\"criterion\": {}, \"time\": {:.17g}, \"step\": {}, \"particle_id\": {}, "
+      "\"body\": {}, \"initial_position\": [{:.17g}, {:.17g}], \"position\": [{:.17g}, "
       "{:.17g}], \"neighbor_id\": {}, \"value\": {:.17g}, \"last_good_step\": {}, "
       "\"last_good_time\": {:.17g}}}",
-      v.criterion, sim.time(), sim.step(), p.id[i], body_of(sim, i), p.x0[i], p.y0[i], p.x[i],
-      p.y[i], v.has_neighbor ? std::to_string(p.id[v.neighbor]) : "null", v.value, last_good_step,
-      static_cast<double>(last_good_step) * sim.spec().dt);
+      json_quoted(v.criterion), sim.time(), sim.step(), p.id[i], json_quoted(body_of(sim, i)),
+      p.x0[i], p.y0[i], p.x[i], p.y[i], v.has_neighbor ? std::to_string(p.id[v.neighbor]) : "null",
+      v.value, last_good_step, static_cast<double>(last_good_step) * sim.spec().dt);
 }
 
 void print_summary(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {

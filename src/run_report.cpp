@@ -6,8 +6,7 @@
 
 namespace mpsolid {
 
-namespace {
-std::string quoted(const std::string& s) {
+std::string json_quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     if (c == '"' || c == '\\') out += '\\';
@@ -20,11 +19,12 @@ std::string quoted(const std::string& s) {
   return out + "\"";
 }
 
+namespace {
 // Wall seconds per phase, checkpoints included, as JSON members.
 std::string phases_json(const Simulation& sim, const RunFacts& facts, const char* separator) {
   std::string phases;
   for (std::size_t k = 0; k < kPhaseNames.size(); ++k)
-    phases += fmt::format("{}{}: {:.6g}", k ? separator : "", quoted(kPhaseNames[k]),
+    phases += fmt::format("{}{}: {:.6g}", k ? separator : "", json_quoted(kPhaseNames[k]),
                           sim.timers().seconds(static_cast<Phase>(k)));
   return phases + fmt::format("{}\"checkpoint\": {:.6g}", separator, facts.checkpoint_seconds);
 }
@@ -40,7 +40,7 @@ std::string segment_json(const Simulation& sim, const RunFacts& facts) {
       "\"final_step\": {}, \"steps\": {}, \"wall_seconds\": {:.6g}, \"steps_per_second\": "
       "{:.6g}, \"frames\": {}, \"bytes_written\": {}, \"checkpoints\": {}, "
       "\"checkpoint_bytes\": {}, \"phase_seconds\": {{{}}}}}",
-      quoted(facts.command_line), quoted(facts.outcome), facts.threads, facts.start_step,
+      json_quoted(facts.command_line), json_quoted(facts.outcome), facts.threads, facts.start_step,
       sim.step(), facts.steps, facts.wall_seconds, rate(facts), facts.frames, facts.bytes_written,
       facts.checkpoints, facts.checkpoint_bytes, phases_json(sim, facts, ", "));
 }
@@ -83,12 +83,13 @@ std::string run_report_json(const Simulation& sim, const RunFacts& facts,
       "  \"phase_seconds\": {{\n{}\n  }},\n"
       "  \"segments\": [\n{}\n  ]{}\n"
       "}}\n",
-      quoted(build_info::version), quoted(build_info::git_commit), quoted(build_info::compiler),
-      quoted(build_info::build_type), quoted(build_info::cxx_flags), quoted(facts.command_line),
-      quoted(sim.spec().name), quoted(sim.spec().model), quoted(facts.outcome), facts.threads,
-      particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps, sim.step(),
-      sim.time(), facts.start_step, facts.frames, facts.bytes_written, facts.checkpoints,
-      facts.checkpoint_bytes, facts.wall_seconds, steps_per_second,
+      json_quoted(build_info::version), json_quoted(build_info::git_commit),
+      json_quoted(build_info::compiler), json_quoted(build_info::build_type),
+      json_quoted(build_info::cxx_flags), json_quoted(facts.command_line),
+      json_quoted(sim.spec().name), json_quoted(sim.spec().model), json_quoted(facts.outcome),
+      facts.threads, particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps,
+      sim.step(), sim.time(), facts.start_step, facts.frames, facts.bytes_written,
+      facts.checkpoints, facts.checkpoint_bytes, facts.wall_seconds, steps_per_second,
       steps_per_second * static_cast<double>(particles), phases, segments,
       facts.diagnosis_json.empty() ? "" : ",\n  \"diagnosis\": " + facts.diagnosis_json);
 }

@@ -12,6 +12,9 @@
 
 namespace mpsolid {
 
+// s as a JSON string literal, quotes and control characters escaped.
+std::string json_quoted(const std::string& s);
+
 struct RunFacts {
   std::string command_line;
   int threads = 1;
