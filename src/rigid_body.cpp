@@ -8,10 +8,9 @@
 
 namespace mpsolid {
 
-RigidBody make_rigid_body(const ParticleStore& p, std::string name, int body_index, Range range) {
+RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range) {
   RigidBody body;
   body.name = std::move(name);
-  body.body_index = body_index;
   body.range = range;
   const auto n = static_cast<double>(range.size());
   const auto [sx, sy] = ordered_sum<2>(range.begin, range.end, [&](std::size_t i) {

@@ -13,7 +13,6 @@ namespace mpsolid {
 
 struct RigidBody {
   std::string name;
-  int body_index = 0;                // index into the case's bodies
   Range range;                       // storage range of its particles
   double xg0 = 0, yg0 = 0;           // initial centroid
   double xg = 0, yg = 0, angle = 0;  // pose: centroid and rotation Theta
@@ -25,7 +24,7 @@ struct RigidBody {
 };
 
 // Sets the reference offsets, centroid and inertia from the particles' x0, y0.
-RigidBody make_rigid_body(const ParticleStore& p, std::string name, int body_index, Range range);
+RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range);
 
 // Projects the particles' velocities onto a rigid motion and advances the pose
 // by dt. Uses the start-of-step positions still stored in p.x, p.y.

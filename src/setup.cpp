@@ -88,8 +88,7 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   for (std::size_t b : order)
     if (spec.bodies[b].kind == Kind::rigid)
-      s.rigid_bodies.push_back(
-          make_rigid_body(p, spec.bodies[b].name, static_cast<int>(b), result.body_ranges[b]));
+      s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, result.body_ranges[b]));
 
   for (const LoadSpec& l : spec.loads) {
     StepLoad load;

@@ -15,7 +15,6 @@ struct StateSnapshot {
   std::vector<RigidBody> rigid_bodies;
   std::vector<StepLoad> loads;
 
-  bool empty() const { return step < 0; }
   static StateSnapshot capture(const SolverState& s);
   void restore(SolverState& s) const;
 };
