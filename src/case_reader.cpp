@@ -126,6 +126,12 @@ class TableReader {
     out[1] = number(v.as_array()[1], key);
   }
 
+  // [a, b] if the key is present; `out` keeps its value otherwise.
+  void pair_or(const std::string& key, const std::string& what, double out[2]) {
+    if (has(key)) pair(key, what, out);
+  }
+  bool has(const std::string& key) const { return table_.as_table().count(key) > 0; }
+
   const TomlValue& subtable(const std::string& key, const std::string& what) {
     const TomlValue& v = require(key, what);
     if (!v.is_table()) fail(key, fmt::format("expected a table ({})", what));
@@ -184,44 +190,65 @@ std::string key(const std::string& name) {
   return toml::format_key(name);
 }
 
-// The case as the solver understood it: every default and override filled in,
-// derived figures as comments. It reads back as the same case.
-std::string resolved_toml(const CaseSpec& c) {
+Hold parse_hold(TableReader& r, const std::string& key, const std::string& text) {
+  if (text == "none") return Hold::none;
+  if (text == "x") return Hold::x;
+  if (text == "y") return Hold::y;
+  r.fail(key, fmt::format("unknown hold '{}' (allowed: none, x, y)", text));
+}
+const char* hold_name(Hold hold) {
+  return hold == Hold::x ? "x" : hold == Hold::y ? "y" : "none";
+}
+
+std::string body_toml(const CaseSpec& c, const BodySpec& b) {
   std::string out = fmt::format(
-      "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
-      c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
-  for (const auto& m : c.materials)
-    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", key(m.name),
-                       format_number(m.lambda()), format_number(m.mu()));
-  out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
-                     quote(c.model), format_number(c.l0), format_number(c.depth));
-  for (const auto& m : c.materials)
-    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", key(m.name),
-                       format_number(m.youngs_modulus), format_number(m.poisson_ratio),
-                       format_number(m.density));
-  for (const auto& b : c.bodies)
+      "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\nx = [{}, {}]\ny = [{}, {}]\n", key(b.name),
+      kind_name(b.kind), quote(c.materials[static_cast<std::size_t>(b.material)].name),
+      format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
+  // Initial motion and holds only where set: walls accept none of them.
+  if (b.velocity[0] != 0 || b.velocity[1] != 0)
+    out += fmt::format("velocity = [{}, {}]\n", format_number(b.velocity[0]),
+                       format_number(b.velocity[1]));
+  if (b.spin != 0) out += fmt::format("spin = {}\n", format_number(b.spin));
+  if (b.hold != Hold::none) out += fmt::format("hold = \"{}\"\n", hold_name(b.hold));
+  if (b.has_mode)
     out += fmt::format(
-        "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\nx = [{}, {}]\ny = [{}, {}]\n", key(b.name),
-        kind_name(b.kind), quote(c.materials[static_cast<std::size_t>(b.material)].name),
-        format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
-  for (const auto& l : c.loads)
-    out +=
-        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = {}\nforce = [{}, {}]\nstart = {}\n",
-                    key(l.name), quote(c.bodies[static_cast<std::size_t>(l.body)].name),
-                    format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
-  out += fmt::format("\n[time]\ndt = {}\nend = {}\n\n[output]\nframe_interval = {}\n",
-                     format_number(c.dt), format_number(c.end), format_number(c.frame_interval));
-  out += fmt::format("checkpoint_interval = {}\ncompression = {}\n",
-                     format_number(c.checkpoint_interval), c.compression);
-  out += fmt::format("\n[finite_strain]\nhourglass = {}\nhourglass_form = \"{}\"\n",
-                     format_number(c.model_options.hourglass),
-                     c.model_options.consistent_hourglass ? "consistent" : "frozen");
-  out += fmt::format(
-      "\n[stability]\ncheck_interval = {}\nmax_speed = {}\nmin_jacobian = {}\nenergy_tolerance = "
-      "{}\n",
-      c.stability.check_interval, format_number(c.stability.max_speed),
-      format_number(c.model_options.min_jacobian), format_number(c.stability.energy_tolerance));
+        "\n[bodies.{}.bending_mode]\nroot_x = {}\nlength = {}\nkL = {}\ntip_velocity = {}\n",
+        key(b.name), format_number(b.mode.root_x), format_number(b.mode.length),
+        format_number(b.mode.kl), format_number(b.mode.tip_velocity));
   return out;
+}
+
+std::string time_toml(const CaseSpec& c) {
+  if (c.dt_auto && c.dt == 0)
+    return fmt::format("\n[time]\ndt = \"auto\"\nsafety = {}\nend = {}\n",
+                       format_number(c.dt_safety), format_number(c.end));
+  return fmt::format("\n[time]\ndt = {}\nend = {}\n", format_number(c.dt), format_number(c.end));
+}
+
+// velocity, spin, hold and bending_mode of a [bodies.NAME] table.
+void read_body_motion(TableReader& r, BodySpec& b) {
+  const bool wall = b.kind == Kind::wall;
+  for (const char* k : {"velocity", "spin", "hold", "bending_mode"})
+    if (wall && r.has(k)) r.fail(k, "walls never move: a wall takes no initial motion or hold");
+  r.pair_or("velocity", "the initial velocity [vx, vy] in m/s", b.velocity);
+  b.spin = r.number_or("spin", 0.0);
+  b.hold = parse_hold(r, "hold", r.string_or("hold", "none"));
+  if (b.kind == Kind::rigid && b.hold != Hold::none)
+    r.fail("hold", "a rigid body cannot be held (use a wall for a fixed body)");
+  if (const TomlValue* table = r.subtable_or_null("bending_mode")) {
+    if (b.kind != Kind::elastic)
+      r.fail("bending_mode", "only an elastic body can start in a bending mode");
+    TableReader m(*table, r.key_path("bending_mode"), r.file());
+    b.has_mode = true;
+    b.mode.root_x = m.number("root_x", "the x of the clamped end in m");
+    b.mode.length = m.number("length", "the beam length L in m");
+    m.range_check("length", b.mode.length, b.mode.length > 0, "(0, inf) m");
+    b.mode.kl = m.number_or("kL", b.mode.kl);
+    m.range_check("kL", b.mode.kl, b.mode.kl > 0 && b.mode.kl < 20, "(0, 20)");
+    b.mode.tip_velocity = m.number("tip_velocity", "v_y at the free end in m/s");
+    m.finish({"root_x", "length", "kL", "tip_velocity"});
+  }
 }
 
 bool rectangles_overlap(const BodySpec& a, const BodySpec& b) {
@@ -301,7 +328,8 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
         r.fail("x", fmt::format("needs x0 < x1, got [{}, {}]", b.x[0], b.x[1]));
       if (!(b.y[0] < b.y[1]))
         r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
-      r.finish({"kind", "material", "x", "y"});
+      read_body_motion(r, b);
+      r.finish({"kind", "material", "x", "y", "velocity", "spin", "hold", "bending_mode"});
       // Estimate in floating point first: integer lattice indices would
       // overflow for an absurdly small l0.
       const double estimate = ((b.x[1] - b.x[0]) / c.l0 + 1.0) * ((b.y[1] - b.y[0]) / c.l0 + 1.0);
@@ -366,15 +394,51 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     }
   }
 
-  // Time.
+  // Probes.
+  if (const TomlValue* table = top.subtable_or_null("probes")) {
+    for (const auto& [name, value] : table->as_table()) {
+      if (!value.is_table())
+        throw InputError(fmt::format("{}: probes.{}: expected a table with at = [x, y]",
+                                     origin(value, file), name));
+      TableReader r(value, "probes." + name, file);
+      ProbeSpec probe;
+      probe.name = name;
+      r.pair("at", "the initial point [x, y] in m whose nearest particle is followed", probe.at);
+      // A point off every body is a typo, not a request to follow a far particle.
+      const bool on_a_body = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const BodySpec& b) {
+        return probe.at[0] >= b.x[0] - c.l0 && probe.at[0] <= b.x[1] + c.l0 &&
+               probe.at[1] >= b.y[0] - c.l0 && probe.at[1] <= b.y[1] + c.l0;
+      });
+      if (!on_a_body)
+        r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body", probe.at[0],
+                                 probe.at[1], c.l0));
+      r.finish({"at"});
+      c.probes.push_back(probe);
+    }
+  }
+
+  // Time. With dt = "auto" the step is not known yet: intervals are checked
+  // against 0 here, and whole-step cadences are kept at >= 1 step.
   {
     const TomlValue& table = top.subtable("time", "[time] with dt and end");
     TableReader r(table, "time", file);
-    c.dt = r.number("dt", "the time step in s");
-    r.range_check("dt", c.dt, c.dt > 0, "(0, inf) s");
+    const TomlValue& dt = r.require("dt", "the time step in s, or \"auto\"");
+    if (dt.is_string()) {
+      if (dt.as_string().str != "auto")
+        r.fail("dt", fmt::format("expected a number of seconds or \"auto\", got {}", describe(dt)));
+      c.dt_auto = true;
+    } else {
+      c.dt = r.number(dt, "dt", "the time step in s, or \"auto\"");
+      r.range_check("dt", c.dt, c.dt > 0, "(0, inf) s");
+    }
+    c.dt_safety = r.number_or("safety", c.dt_safety);
+    r.range_check("safety", c.dt_safety, c.dt_safety > 0 && c.dt_safety <= 1,
+                  "(0, 1] (a fraction of the stability limit)");
+    if (r.has("safety") && !c.dt_auto) r.fail("safety", "applies only with dt = \"auto\"");
     c.end = r.number("end", "the end time in s");
-    r.range_check("end", c.end, c.end >= c.dt, fmt::format("[dt, inf) = [{}, inf) s", c.dt));
-    r.finish({"dt", "end"});
+    r.range_check("end", c.end, c.end >= c.dt && c.end > 0,
+                  fmt::format("[dt, inf) = [{}, inf) s", c.dt));
+    r.finish({"dt", "safety", "end"});
   }
 
   // Output.
@@ -383,18 +447,26 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   if (const TomlValue* table = top.subtable_or_null("output")) {
     TableReader r(*table, "output", file);
     c.frame_interval = r.number_or("frame_interval", c.frame_interval);
-    r.range_check("frame_interval", c.frame_interval, c.frame_interval >= c.dt,
+    r.range_check("frame_interval", c.frame_interval,
+                  c.frame_interval >= c.dt && c.frame_interval > 0,
                   fmt::format("[dt, inf) = [{}, inf) s", c.dt));
+    c.history_interval = r.number_or("history_interval", c.frame_interval);
+    r.range_check("history_interval", c.history_interval,
+                  c.history_interval >= c.dt && c.history_interval > 0 &&
+                      c.history_interval <= c.frame_interval,
+                  fmt::format("[dt, frame_interval] = [{}, {}] s", c.dt, c.frame_interval));
     c.checkpoint_interval = r.number_or("checkpoint_interval", c.checkpoint_interval);
-    r.range_check("checkpoint_interval", c.checkpoint_interval,
-                  c.checkpoint_interval == 0 || c.checkpoint_interval >= c.dt,
-                  fmt::format("0 (only at the end) or [dt, inf) = [{}, inf) s", c.dt));
+    r.range_check(
+        "checkpoint_interval", c.checkpoint_interval,
+        c.checkpoint_interval == 0 || (c.checkpoint_interval >= c.dt && c.checkpoint_interval > 0),
+        fmt::format("0 (only at the end) or [dt, inf) = [{}, inf) s", c.dt));
     const double level = r.number_or("compression", 0);
     r.range_check("compression", level, level >= 0 && level <= 9 && level == std::floor(level),
                   "a deflate level 0 (off) to 9");
     c.compression = static_cast<int>(level);
-    r.finish({"frame_interval", "checkpoint_interval", "compression"});
+    r.finish({"frame_interval", "history_interval", "checkpoint_interval", "compression"});
   }
+  if (c.history_interval == 0) c.history_interval = c.frame_interval;
 
   // Model options.
   if (const TomlValue* table = top.subtable_or_null("finite_strain")) {
@@ -431,13 +503,52 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     r.finish({"check_interval", "max_speed", "min_jacobian", "energy_tolerance"});
   }
 
-  top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "time", "output",
-              "finite_strain", "stability"});
-  c.resolved_toml = resolved_toml(c);
+  top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "probes", "time",
+              "output", "finite_strain", "stability"});
+  c.resolved_toml = resolved_case_toml(c);
   return c;
 }
 
 }  // namespace
+
+// Derived figures go in as comments.
+std::string resolved_case_toml(const CaseSpec& c) {
+  std::string out = fmt::format(
+      "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
+      c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", key(m.name),
+                       format_number(m.lambda()), format_number(m.mu()));
+  out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
+                     quote(c.model), format_number(c.l0), format_number(c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", key(m.name),
+                       format_number(m.youngs_modulus), format_number(m.poisson_ratio),
+                       format_number(m.density));
+  for (const auto& b : c.bodies) out += body_toml(c, b);
+  for (const auto& l : c.loads)
+    out +=
+        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = {}\nforce = [{}, {}]\nstart = {}\n",
+                    key(l.name), quote(c.bodies[static_cast<std::size_t>(l.body)].name),
+                    format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
+  for (const auto& probe : c.probes)
+    out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),
+                       format_number(probe.at[0]), format_number(probe.at[1]));
+  out += time_toml(c);
+  out += fmt::format("\n[output]\nframe_interval = {}\nhistory_interval = {}\n",
+                     format_number(c.frame_interval), format_number(c.history_interval));
+  out += fmt::format("checkpoint_interval = {}\ncompression = {}\n",
+                     format_number(c.checkpoint_interval), c.compression);
+  out += fmt::format("\n[finite_strain]\nhourglass = {}\nhourglass_form = \"{}\"\n",
+                     format_number(c.model_options.hourglass),
+                     c.model_options.consistent_hourglass ? "consistent" : "frozen");
+  out += fmt::format(
+      "\n[stability]\ncheck_interval = {}\nmax_speed = {}\nmin_jacobian = {}\nenergy_tolerance = "
+      "{}\n",
+      c.stability.check_interval, format_number(c.stability.max_speed),
+      format_number(c.model_options.min_jacobian), format_number(c.stability.energy_tolerance));
+  return out;
+}
 
 std::int64_t CaseSpec::step_count() const {
   // Nearest whole step when end is a multiple of dt up to round-off, else the
@@ -449,21 +560,42 @@ std::int64_t CaseSpec::step_count() const {
   return static_cast<std::int64_t>(std::ceil(ratio));
 }
 
-std::int64_t CaseSpec::steps_per_checkpoint() const {
-  if (checkpoint_interval <= 0) return 0;
-  const double ratio = checkpoint_interval / dt;
+namespace {
+// Whole steps in `interval`: the nearest count when it is a multiple of dt up
+// to round-off, else rounded down; at least 1.
+std::int64_t steps_in(double interval, double dt) {
+  const double ratio = interval / dt;
   const double nearest = std::round(ratio);
   if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
     return std::max<std::int64_t>(1, static_cast<std::int64_t>(nearest));
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
 }
+}  // namespace
 
+std::int64_t CaseSpec::steps_per_checkpoint() const {
+  return checkpoint_interval > 0 ? steps_in(checkpoint_interval, dt) : 0;
+}
 std::int64_t CaseSpec::steps_per_frame() const {
-  const double ratio = frame_interval / dt;
-  const double nearest = std::round(ratio);
-  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
-    return std::max<std::int64_t>(1, static_cast<std::int64_t>(nearest));
-  return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
+  return steps_in(frame_interval, dt);
+}
+std::int64_t CaseSpec::steps_per_history() const {
+  return std::min(steps_per_frame(), steps_in(history_interval, dt));
+}
+
+void CaseSpec::set_auto_time_step(double limit, double omega_max) {
+  // The finest output interval becomes a whole number of steps, so outputs
+  // fall on the requested times whatever step is chosen.
+  const double finest = std::min(history_interval, frame_interval);
+  const double target = dt_safety * limit;
+  dt = finest / std::ceil(finest / target * (1.0 - 1e-12));
+  // The resolved case keeps the chosen step as a number, so a resumed run
+  // goes on with it rather than estimating again.
+  resolved_toml = fmt::format(
+      "# time.dt = \"auto\" chose {} s: the largest step <= safety {} x the model's stability\n"
+      "# limit 2 / omega_max = {} s (omega_max = {} rad/s) with whole steps per output.\n",
+      format_number(dt), format_number(dt_safety), format_number(limit), format_number(omega_max));
+  resolved_toml += resolved_case_toml(*this);
+  if (checkpoint_interval > 0) checkpoint_interval = std::max(checkpoint_interval, dt);
 }
 
 CaseSpec parse_case(const std::string& toml_text, const std::string& source_name,

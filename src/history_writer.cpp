@@ -21,6 +21,8 @@ std::vector<std::string> history_columns(const Simulation& sim) {
     if (b.kind == Kind::elastic)
       for (const char* suffix : {".xmin", ".xmax", ".ymin", ".ymax"})
         cols.push_back(b.name + suffix);
+  for (const ProbeSpec& probe : sim.spec().probes)
+    for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
   return cols;
 }
 
@@ -40,6 +42,7 @@ std::vector<double> history_row(const Simulation& sim, const Diagnostics& d) {
     const auto [ymin, ymax] = std::minmax_element(p.y.begin() + r.begin, p.y.begin() + r.end);
     row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
   }
+  for (const std::size_t i : sim.probe_particles()) row.insert(row.end(), {p.x[i], p.y[i]});
   return row;
 }
 

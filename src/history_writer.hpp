@@ -1,5 +1,6 @@
 #pragma once
-// history.csv: one row per frame, 17 significant digits, SI units.
+// history.csv: a row every output.history_interval and at every frame, 17
+// significant digits, SI units.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -11,7 +12,8 @@
 namespace mpsolid {
 
 // Column names for a case: the fixed diagnostics, then per rigid body
-// B.x, B.y, B.theta, then per elastic body B.xmin, B.xmax, B.ymin, B.ymax.
+// B.x, B.y, B.theta, then per elastic body B.xmin, B.xmax, B.ymin, B.ymax,
+// then per probe probe.NAME.x, probe.NAME.y (current position).
 std::vector<std::string> history_columns(const Simulation& sim);
 std::vector<double> history_row(const Simulation& sim, const Diagnostics& d);
 

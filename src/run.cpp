@@ -70,6 +70,12 @@ void print_summary(const Simulation& sim, const RunFacts& facts, const RunOption
   fmt::print("  {} particles, {} bonds; {:.4g} steps/s, {:.4g} particle-steps/s\n",
              sim.particles().size(), sim.state().bonds.entry_count() / 2, rate,
              rate * static_cast<double>(sim.particles().size()));
+  if (const StableStepEstimate& e = sim.stable_step(); e.iterations > 0)
+    fmt::print(
+        "  dt = {:.6g} s (auto: safety {} x limit {:.6g} s, omega_max {:.6g} rad/s, {} power "
+        "iterations{})\n",
+        sim.spec().dt, sim.spec().dt_safety, e.dt_limit, e.omega_max, e.iterations,
+        e.converged ? "" : ", not converged");
   fmt::print("  {} frames, {:.3g} MB written ({:.3g} kB per frame) to {}\n", facts.frames,
              static_cast<double>(facts.bytes_written) / 1e6,
              facts.frames ? static_cast<double>(facts.bytes_written) / 1e3 / facts.frames : 0.0,
@@ -114,6 +120,7 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
 
   const std::int64_t total = spec.step_count();
   const std::int64_t cadence = spec.steps_per_frame();
+  const std::int64_t history_every = spec.steps_per_history();
   const std::int64_t check_every = spec.stability.check_interval;
   const std::int64_t checkpoint_every = spec.steps_per_checkpoint();
   // Steps between looks at the stop flag: about 2e7 particle-steps (well
@@ -129,8 +136,9 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
   StateSnapshot last_good = StateSnapshot::capture(sim.state());
   while (sim.step() < total) {
     const std::int64_t next_frame = std::min(total, (sim.step() / cadence + 1) * cadence);
-    const std::int64_t next_check = std::min({next_frame, next_on_cadence(sim.step(), check_every),
-                                              next_on_cadence(sim.step(), checkpoint_every)});
+    const std::int64_t next_check = std::min(
+        {next_frame, next_on_cadence(sim.step(), history_every),
+         next_on_cadence(sim.step(), check_every), next_on_cadence(sim.step(), checkpoint_every)});
     while (sim.step() < next_check && !stop_requested()) {
       sim.advance(std::min(chunk, next_check - sim.step()));
       progress.update(sim.step());
@@ -149,6 +157,10 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
     }
     last_good = StateSnapshot::capture(sim.state());
     if (sim.step() == next_frame) write_frame(d);
+    if (sim.step() % history_every == 0) {
+      auto t = sim.timers().time(Phase::output);
+      outputs.write_history(sim, d);
+    }
     if (sim.step() == total) break;
     if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0 &&
         sim.step() > outputs.last_checkpoint_step())

@@ -74,8 +74,14 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const Simulation& sim,
   write_file_atomically(dir / "case.resolved.toml", sim.spec().resolved_toml);
 }
 
-void RunOutputs::write_frame(const Simulation& sim, const Diagnostics& d) {
+void RunOutputs::write_history(const Simulation& sim, const Diagnostics& d) {
+  if (sim.step() == last_history_step_) return;
   history_.write(sim, d);
+  last_history_step_ = sim.step();
+}
+
+void RunOutputs::write_frame(const Simulation& sim, const Diagnostics& d) {
+  write_history(sim, d);
   frames_.write(sim);
   last_frame_step_ = sim.step();
 }

@@ -29,6 +29,8 @@ class RunOutputs {
   // A resumed run: `sim` holds the restored state of `from`.
   RunOutputs(const std::filesystem::path& dir, const Simulation& sim, const Checkpoint& from);
 
+  // A history.csv row (once per step), and a frame with its row.
+  void write_history(const Simulation& sim, const Diagnostics& d);
   void write_frame(const Simulation& sim, const Diagnostics& d);
   // Publishes copies of the outputs (unless published), then writes
   // checkpoint.h5 with the run.json segments so far, this one described by
@@ -56,6 +58,7 @@ class RunOutputs {
   bool published_ = false;
   std::int64_t last_checkpoint_step_ = -1;
   std::int64_t last_frame_step_ = -1;
+  std::int64_t last_history_step_ = -1;
   int checkpoints_ = 0;
   std::uintmax_t checkpoint_bytes_ = 0;
   double checkpoint_seconds_ = 0;

@@ -45,6 +45,16 @@ std::string segment_json(const Simulation& sim, const RunFacts& facts) {
       facts.checkpoints, facts.checkpoint_bytes, phases_json(sim, facts, ", "));
 }
 
+// The estimate behind time.dt = "auto", if it was used.
+std::string stable_step_json(const Simulation& sim) {
+  const StableStepEstimate& e = sim.stable_step();
+  if (e.iterations == 0) return "";
+  return fmt::format(
+      ",\n  \"stable_step\": {{\"safety\": {:.17g}, \"dt_limit\": {:.17g}, \"omega_max\": {:.17g}, "
+      "\"iterations\": {}, \"converged\": {}}}",
+      sim.spec().dt_safety, e.dt_limit, e.omega_max, e.iterations, e.converged);
+}
+
 std::string run_report_json(const Simulation& sim, const RunFacts& facts,
                             const std::vector<std::string>& previous_segments) {
   const double steps_per_second = rate(facts);
@@ -81,7 +91,7 @@ std::string run_report_json(const Simulation& sim, const RunFacts& facts,
       "  \"steps_per_second\": {:.6g},\n"
       "  \"particle_steps_per_second\": {:.6g},\n"
       "  \"phase_seconds\": {{\n{}\n  }},\n"
-      "  \"segments\": [\n{}\n  ]{}\n"
+      "  \"segments\": [\n{}\n  ]{}{}\n"
       "}}\n",
       json_quoted(build_info::version), json_quoted(build_info::git_commit),
       json_quoted(build_info::compiler), json_quoted(build_info::build_type),
@@ -90,7 +100,7 @@ std::string run_report_json(const Simulation& sim, const RunFacts& facts,
       facts.threads, particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps,
       sim.step(), sim.time(), facts.start_step, facts.frames, facts.bytes_written,
       facts.checkpoints, facts.checkpoint_bytes, facts.wall_seconds, steps_per_second,
-      steps_per_second * static_cast<double>(particles), phases, segments,
+      steps_per_second * static_cast<double>(particles), phases, segments, stable_step_json(sim),
       facts.diagnosis_json.empty() ? "" : ",\n  \"diagnosis\": " + facts.diagnosis_json);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "src/geometry.hpp"
@@ -25,7 +26,6 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
   auto timer = timers.time(Phase::setup);
   SetupResult result;
   SolverState& s = result.state;
-  s.dt = spec.dt;
 
   // Ids in case order (bodies by name, sites row by row).
   std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
@@ -90,16 +90,45 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
     if (spec.bodies[b].kind == Kind::rigid)
       s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, result.body_ranges[b]));
 
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].hold != Hold::none)
+      s.holds.push_back(
+          {result.body_ranges[b], spec.bodies[b].hold == Hold::x, spec.bodies[b].hold == Hold::y});
+
+  // Probes: the nearest particle to the point, lowest id on a tie.
+  for (const ProbeSpec& probe : spec.probes) {
+    std::size_t best = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double dx = p.x0[i] - probe.at[0], dy = p.y0[i] - probe.at[1];
+      const double d2 = dx * dx + dy * dy;
+      if (d2 < best_d2 || (d2 == best_d2 && p.id[i] < p.id[best])) {
+        best = i;
+        best_d2 = d2;
+      }
+    }
+    result.probes.push_back(best);
+  }
+
   for (const LoadSpec& l : spec.loads) {
     StepLoad load;
     load.name = l.name;
     load.range = result.body_ranges[static_cast<std::size_t>(l.body)];
     load.fx = l.force[0];
     load.fy = l.force[1];
-    load.first_step = static_cast<std::int64_t>(std::ceil(l.start / spec.dt - 1e-9));
     s.loads.push_back(load);
   }
+  if (spec.dt > 0) schedule_loads(s, spec);
   return result;
 }
 
+}  // namespace mpsolid
+
+namespace mpsolid {
+void schedule_loads(SolverState& s, const CaseSpec& spec) {
+  s.dt = spec.dt;
+  for (std::size_t k = 0; k < spec.loads.size(); ++k)
+    s.loads[k].first_step =
+        static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
+}
 }  // namespace mpsolid

@@ -10,9 +10,15 @@ namespace mpsolid {
 
 struct SetupResult {
   SolverState state;
-  std::vector<Range> body_ranges;  // storage range of each body (case order)
+  std::vector<Range> body_ranges;   // storage range of each body (case order)
+  std::vector<std::size_t> probes;  // storage index of each probe's particle (case order)
 };
 
+// Particles, bonds, rigid bodies, holds and probes. Loads are scheduled when
+// spec.dt is known (at once unless dt is "auto").
 SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers);
+
+// Sets the state's step and each load's first step k (k dt >= start).
+void schedule_loads(SolverState& s, const CaseSpec& spec);
 
 }  // namespace mpsolid

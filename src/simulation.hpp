@@ -8,6 +8,7 @@
 #include "src/models.hpp"
 #include "src/setup.hpp"
 #include "src/stability.hpp"
+#include "src/stable_step.hpp"
 
 namespace mpsolid {
 
@@ -39,6 +40,10 @@ class Simulation {
   const ParticleStore& particles() const { return state_.particles; }
   ParticleStore& particles() { return state_.particles; }
   const std::vector<Range>& body_ranges() const { return body_ranges_; }
+  // Storage index of each probe's particle (spec().probes order).
+  const std::vector<std::size_t>& probe_particles() const { return probes_; }
+  // The estimate behind time.dt = "auto" (zeros when dt was given).
+  const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
   const PhaseTimers& timers() const { return timers_; }
 
@@ -49,7 +54,9 @@ class Simulation {
   PhaseTimers timers_;
   SolverState state_;
   std::vector<Range> body_ranges_;
+  std::vector<std::size_t> probes_;
   AnyModel model_;
+  StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
 };

@@ -1,12 +1,13 @@
 #pragma once
 // One time step, in order (MODEL.md section 2). Holds no physics itself:
-// loads -> half angles -> strain pass -> force/torque pass -> integrate ->
-// rigid-body projection.
+// half angles -> strain pass -> force/torque pass -> loads -> holds ->
+// integrate -> rigid-body projection.
 #include <cstdint>
 #include <vector>
 
 #include "kernels/half_angles.hpp"
 #include "src/bonds.hpp"
+#include "src/holds.hpp"
 #include "src/integrator.hpp"
 #include "src/loads.hpp"
 #include "src/particle_store.hpp"
@@ -20,6 +21,7 @@ struct SolverState {
   BondTable bonds;
   std::vector<RigidBody> rigid_bodies;
   std::vector<StepLoad> loads;
+  std::vector<HeldRange> holds;
   double dt = 0;
   std::int64_t step = 0;
   // The largest external work seen by a stability check: the energy scale of
@@ -52,6 +54,7 @@ void advance_one_step(Model& model, SolverState& s, PhaseTimers& timers) {
     auto t = timers.time(Phase::loads);
     apply_loads(p, s.loads, s.step);
   }
+  if (!s.holds.empty()) clear_held_forces(p, s.holds);
   {
     auto t = timers.time(Phase::integrate);
     kick_drift(p, p.elastic, s.dt, rot);

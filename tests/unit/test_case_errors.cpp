@@ -117,11 +117,83 @@ TEST(CaseErrors, TheBaseCaseIsValid) {
   ASSERT_EQ(spec.loads.size(), 1u);
 }
 
+// ---- initial motion, holds, probes, automatic step ---------------------------
+
+TEST(CaseErrors, WallsTakeNoMotionOrHold) {
+  for (const char* key : {"velocity = [1.0, 0.0]", "spin = 1.0", "hold = \"y\""})
+    EXPECT_INPUT_ERROR(edit("x = [0.100, 0.104]", std::string("x = [0.100, 0.104]\n") + key),
+                       {"bad.toml", "bodies.wall.", "walls never move"});
+}
+
+TEST(CaseErrors, RigidBodiesTakeNoHoldOrBendingMode) {
+  EXPECT_INPUT_ERROR(edit("y = [-0.030, 0.030]", "y = [-0.030, 0.030]\nhold = \"x\""),
+                     {"bad.toml", "bodies.plate.hold", "rigid body cannot be held"});
+  EXPECT_INPUT_ERROR(base_toml(), {"bodies.plate.bending_mode", "only an elastic body"},
+                     {"bodies.plate.bending_mode={root_x=0.0, length=0.1, tip_velocity=1.0}"});
+}
+
+TEST(CaseErrors, UnknownHold) {
+  EXPECT_INPUT_ERROR(edit("y = [-0.020, 0.020]\n\n[bodies.plate]",
+                          "y = [-0.020, 0.020]\nhold = \"z\"\n\n[bodies.plate]"),
+                     {"bad.toml", "bodies.rod.hold", "'z'", "none, x, y"});
+}
+
+TEST(CaseErrors, BendingModeNeedsAPositiveLengthAndItsKeys) {
+  EXPECT_INPUT_ERROR(base_toml(), {"bodies.rod.bending_mode.length", "(0, inf) m"},
+                     {"bodies.rod.bending_mode={root_x=0.0, length=-0.1, tip_velocity=1.0}"});
+  EXPECT_INPUT_ERROR(base_toml(), {"bodies.rod.bending_mode.tip_velocity", "is missing"},
+                     {"bodies.rod.bending_mode={root_x=0.0, length=0.1}"});
+  EXPECT_INPUT_ERROR(
+      base_toml(), {"bodies.rod.bending_mode.kL", "(0, 20)"},
+      {"bodies.rod.bending_mode={root_x=0.0, length=0.1, kL=0.0, tip_velocity=1.0}"});
+}
+
+TEST(CaseErrors, ProbeOffEveryBody) {
+  EXPECT_INPUT_ERROR(base_toml(), {"probes.tip.at", "not within l0", "of any body"},
+                     {"probes.tip.at=[0.5, 0.5]"});
+  EXPECT_INPUT_ERROR(base_toml(), {"probes.tip.at", "two numbers"}, {"probes.tip.at=0.5"});
+}
+
+TEST(CaseErrors, TimeStepMustBeANumberOrAuto) {
+  EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = \"fast\""),
+                     {"bad.toml", "time.dt", "\"auto\"", "fast"});
+  EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = \"auto\"\nsafety = 1.5"),
+                     {"bad.toml", "time.safety", "(0, 1]"});
+  EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = 1.0e-8\nsafety = 0.5"),
+                     {"bad.toml", "time.safety", "only with dt = \"auto\""});
+}
+
+TEST(CaseErrors, HistoryIntervalWithinDtAndFrameInterval) {
+  EXPECT_INPUT_ERROR(base_toml(), {"output.history_interval", "[dt, frame_interval]"},
+                     {"output.history_interval=0.002"});
+  EXPECT_INPUT_ERROR(base_toml(), {"output.history_interval", "[dt, frame_interval]"},
+                     {"output.history_interval=1e-9"});
+}
+
+TEST(GoodCases, AutoTimeStepFitsWholeStepsInTheFinestOutput) {
+  CaseSpec spec =
+      parse_case(base_toml(), "bad.toml", {"time.dt=\"auto\"", "output.history_interval=1e-4"});
+  EXPECT_TRUE(spec.dt_auto);
+  EXPECT_EQ(spec.dt, 0.0);
+  EXPECT_EQ(spec.dt_safety, 0.5);
+  spec.set_auto_time_step(1.19e-5, 2.0 / 1.19e-5);
+  // 0.5 x 11.9 us = 5.95 us -> 1e-4 / 17 steps = 5.88 us.
+  EXPECT_DOUBLE_EQ(spec.dt, 1e-4 / 17);
+  EXPECT_EQ(spec.steps_per_history(), 17);
+  EXPECT_EQ(spec.steps_per_frame(), 170);
+  EXPECT_EQ(spec.step_count(), 1700);
+  // The resolved case holds the chosen step as a number and reads back.
+  const CaseSpec again = parse_case(spec.resolved_toml, "case.resolved.toml");
+  EXPECT_FALSE(again.dt_auto);
+  EXPECT_EQ(again.dt, spec.dt);
+  EXPECT_NE(spec.resolved_toml.find("time.dt = \"auto\" chose"), std::string::npos);
+}
+
 // ---- unknown keys -----------------------------------------------------------
 
 TEST(CaseErrors, UnknownKeyInATable) {
   EXPECT_INPUT_ERROR(edit("dt = 1.0e-8", "dt = 1.0e-8\ndtt = 1e-8"),
-                     {"bad.toml", "time.dtt", "unknown key", "dt, end"});
+                     {"bad.toml", "time.dtt", "unknown key", "dt, safety, end"});
 }
 
 TEST(CaseErrors, UnknownKeyAtTopLevel) {
@@ -411,7 +483,7 @@ TEST(OverrideErrors, OutOfRangeValueMentionsTheSet) {
 }
 
 TEST(OverrideErrors, UnknownKeyMentionsTheSet) {
-  EXPECT_INPUT_ERROR(base_toml(), {"--set", "time.dtt", "unknown key", "dt, end"},
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "time.dtt", "unknown key", "dt, safety, end"},
                      {"time.dtt=1e-8"});
   EXPECT_INPUT_ERROR(base_toml(), {"--set", "tmie", "unknown key"}, {"tmie.end=1"});
 }
@@ -529,8 +601,25 @@ void expect_same_case(const CaseSpec& a, const CaseSpec& b) {
     for (int e = 0; e < 2; ++e) {
       EXPECT_EQ(a.bodies[k].x[e], b.bodies[k].x[e]);
       EXPECT_EQ(a.bodies[k].y[e], b.bodies[k].y[e]);
+      EXPECT_EQ(a.bodies[k].velocity[e], b.bodies[k].velocity[e]);
     }
+    EXPECT_EQ(a.bodies[k].spin, b.bodies[k].spin);
+    EXPECT_EQ(a.bodies[k].hold, b.bodies[k].hold);
+    EXPECT_EQ(a.bodies[k].has_mode, b.bodies[k].has_mode);
+    EXPECT_EQ(a.bodies[k].mode.root_x, b.bodies[k].mode.root_x);
+    EXPECT_EQ(a.bodies[k].mode.length, b.bodies[k].mode.length);
+    EXPECT_EQ(a.bodies[k].mode.kl, b.bodies[k].mode.kl);
+    EXPECT_EQ(a.bodies[k].mode.tip_velocity, b.bodies[k].mode.tip_velocity);
   }
+  ASSERT_EQ(a.probes.size(), b.probes.size());
+  for (std::size_t k = 0; k < a.probes.size(); ++k) {
+    EXPECT_EQ(a.probes[k].name, b.probes[k].name);
+    EXPECT_EQ(a.probes[k].at[0], b.probes[k].at[0]);
+    EXPECT_EQ(a.probes[k].at[1], b.probes[k].at[1]);
+  }
+  EXPECT_EQ(a.dt_auto, b.dt_auto);
+  EXPECT_EQ(a.dt_safety, b.dt_safety);
+  EXPECT_EQ(a.history_interval, b.history_interval);
   ASSERT_EQ(a.loads.size(), b.loads.size());
   for (std::size_t k = 0; k < a.loads.size(); ++k) {
     EXPECT_EQ(a.loads[k].name, b.loads[k].name);
@@ -544,7 +633,11 @@ void expect_same_case(const CaseSpec& a, const CaseSpec& b) {
 TEST(GoodCases, ResolvedTomlReadsBackAsTheSameCase) {
   for (const Strings& overrides :
        {Strings{}, Strings{"l0=0.001", "time.end=0.002", "loads.shock.force=[55900.0, 0.0]"},
-        Strings{"time.dt=3e-9", "depth=0.01"}}) {
+        Strings{"time.dt=3e-9", "depth=0.01"},
+        Strings{"time.dt=\"auto\"", "time.safety=0.3", "output.history_interval=1e-4",
+                "probes.tip.at=[0.099, 0.0]", "bodies.rod.velocity=[1.0, -2.0]",
+                "bodies.rod.spin=3.0", "bodies.rod.hold=\"y\"",
+                "bodies.rod.bending_mode={root_x=0.0, length=0.1, tip_velocity=0.5}"}}) {
     SCOPED_TRACE(overrides.empty() ? std::string("no overrides") : overrides.front());
     const CaseSpec original = read_case(shipped("shock_rod.toml"), overrides);
     const CaseSpec again = parse_case(original.resolved_toml, "case.resolved.toml");
