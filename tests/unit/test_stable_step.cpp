@@ -1,0 +1,99 @@
+// time.dt = "auto": the estimate of the symplectic-Euler stability limit
+// 2 / omega_max from power iteration on each model's own force pass.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "src/parallel.hpp"
+#include "tests/support/test_cases.hpp"
+
+namespace mpsolid {
+namespace {
+
+using testing::free_block_case;
+using testing::rod_case;
+
+const char* const kModels[] = {"paper", "paper_conservative", "finite_strain"};
+
+double limit_of(const CaseSpec& spec) {
+  Simulation sim(spec);
+  EXPECT_TRUE(sim.stable_step().converged);
+  return sim.stable_step().dt_limit;
+}
+
+TEST(StableStep, PaperModelMatchesTheIndependentLimitOnTheRod) {
+  // Independent checks put the paper model's limit on the rod at 11.9 us
+  // (l0 = 2 mm) and 5.9 us (l0 = 1 mm).
+  const double coarse = limit_of(rod_case({"time.dt=\"auto\"", "time.end=1e-4"}));
+  const double fine = limit_of(rod_case({"time.dt=\"auto\"", "time.end=1e-4", "l0=0.001"}));
+  EXPECT_NEAR(coarse, 11.9e-6, 0.012 * 11.9e-6);
+  EXPECT_NEAR(fine, 5.9e-6, 0.012 * 5.9e-6);
+  // The limit is l0 / (a wave speed): halving l0 halves it.
+  EXPECT_NEAR(fine / coarse, 0.5, 0.005);
+}
+
+TEST(StableStep, ChosenStepIsSafetyTimesLimitWithWholeStepsPerOutput) {
+  Simulation sim(rod_case(
+      {"time.dt=\"auto\"", "time.safety=0.25", "time.end=1e-4", "output.frame_interval=1e-4"}));
+  const double dt = sim.spec().dt;
+  EXPECT_LE(dt, 0.25 * sim.stable_step().dt_limit);
+  EXPECT_GT(dt, 0.24 * sim.stable_step().dt_limit);
+  EXPECT_DOUBLE_EQ(1e-4 / dt, std::round(1e-4 / dt));
+  EXPECT_EQ(sim.state().dt, dt);
+}
+
+TEST(StableStep, SameStepAtAnyThreadCount) {
+  set_thread_count(1);
+  const double one = limit_of(rod_case({"time.dt=\"auto\"", "time.end=1e-4"}));
+  set_thread_count(2);
+  const double two = limit_of(rod_case({"time.dt=\"auto\"", "time.end=1e-4"}));
+  set_thread_count(1);
+  EXPECT_EQ(one, two);
+}
+
+// Runs a free block from a tiny checkerboard kick at `fraction` of the
+// estimated limit and returns the largest speed after `steps`.
+double speed_after(const std::string& model, double fraction, int steps) {
+  CaseSpec spec = free_block_case(12, 8, false, 1e-7, model);
+  const double limit = [&] {
+    CaseSpec a = spec;
+    a.dt_auto = true;
+    a.dt = 0;
+    return Simulation(a).stable_step().dt_limit;
+  }();
+  spec.dt = fraction * limit;
+  Simulation sim(spec);
+  ParticleStore& p = sim.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double sign = ((static_cast<long>(std::floor(p.x0[i] / 1e-3)) +
+                          static_cast<long>(std::floor(p.y0[i] / 1e-3))) &
+                         1)
+                            ? -1.0
+                            : 1.0;
+    p.vx[i] = 1e-6 * sign;
+    p.vy[i] = -1e-6 * sign;
+  }
+  sim.advance(steps);
+  double fastest = 0;  // a blown-up run counts as infinitely fast
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double v = std::hypot(p.vx[i], p.vy[i]);
+    fastest = std::isfinite(v) ? std::max(fastest, v) : INFINITY;
+  }
+  return fastest;
+}
+
+TEST(StableStep, EstimateSeparatesStableFromUnstableSteps) {
+  // Just below the estimated limit a kick of 1 um/s stays that small; just
+  // above it the stiffest mode grows by more than 1e6 in 100 steps (and
+  // overflows soon after, so the count stays short).
+  for (const char* model : kModels) {
+    SCOPED_TRACE(model);
+    EXPECT_LT(speed_after(model, 0.97, 400), 1e-4);
+    EXPECT_LT(speed_after(model, 0.97, 100), 1e-4);
+    EXPECT_GT(speed_after(model, 1.03, 100), 1.0);
+  }
+}
+
+}  // namespace
+}  // namespace mpsolid
