@@ -175,13 +175,13 @@ TEST(GoodCases, AutoTimeStepFitsWholeStepsInTheFinestOutput) {
       parse_case(base_toml(), "bad.toml", {"time.dt=\"auto\"", "output.history_interval=1e-4"});
   EXPECT_TRUE(spec.dt_auto);
   EXPECT_EQ(spec.dt, 0.0);
-  EXPECT_EQ(spec.dt_safety, 0.5);
+  EXPECT_EQ(spec.dt_safety, 0.4);
   spec.set_auto_time_step(1.19e-5, 2.0 / 1.19e-5);
-  // 0.5 x 11.9 us = 5.95 us -> 1e-4 / 17 steps = 5.88 us.
-  EXPECT_DOUBLE_EQ(spec.dt, 1e-4 / 17);
-  EXPECT_EQ(spec.steps_per_history(), 17);
-  EXPECT_EQ(spec.steps_per_frame(), 170);
-  EXPECT_EQ(spec.step_count(), 1700);
+  // 0.4 x 11.9 us = 4.76 us -> 1e-4 / 22 steps = 4.55 us.
+  EXPECT_DOUBLE_EQ(spec.dt, 1e-4 / 22);
+  EXPECT_EQ(spec.steps_per_history(), 22);
+  EXPECT_EQ(spec.steps_per_frame(), 220);
+  EXPECT_EQ(spec.step_count(), 2200);
   // The resolved case holds the chosen step as a number and reads back.
   const CaseSpec again = parse_case(spec.resolved_toml, "case.resolved.toml");
   EXPECT_FALSE(again.dt_auto);
