@@ -57,11 +57,22 @@ class Run:
 
     def execute(self, args):
         out = os.path.join(args.work, self.tag)
-        if args.fresh or not os.path.exists(os.path.join(out, "run.json")):
+        if args.fresh or not finished(out):
             done = subprocess.run(self.command(args, out), capture_output=True, text=True)
             if done.returncode not in self.ok_codes:
                 raise RuntimeError(f"{self.tag}: mpsolid exited {done.returncode}:\n{done.stderr}")
         return out
+
+
+def finished(folder):
+    """A cached run counts if it ran to its end or was stopped by a blow-up
+    check (not by a signal: that one is run again)."""
+    import json
+    try:
+        with open(os.path.join(folder, "run.json")) as f:
+            return not json.load(f)["outcome"].startswith("stopped")
+    except (OSError, ValueError, KeyError):
+        return False
 
 
 def read_history(folder):
