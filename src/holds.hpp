@@ -13,6 +13,8 @@ struct HeldRange {
   bool x = false, y = false;
 };
 
-void clear_held_forces(ParticleStore& p, const std::vector<HeldRange>& holds);
+// Clears the held components of the particles of `block` (serially: it is
+// called per thread block, after that block's loads).
+void clear_held_forces(ParticleStore& p, const std::vector<HeldRange>& holds, Range block);
 
 }  // namespace mpsolid

@@ -54,7 +54,7 @@ void advance_one_step(Model& model, SolverState& s, PhaseTimers& timers) {
     auto t = timers.time(Phase::loads);
     apply_loads(p, s.loads, s.step);
   }
-  if (!s.holds.empty()) clear_held_forces(p, s.holds);
+  if (!s.holds.empty()) clear_held_forces(p, s.holds, p.moving());
   {
     auto t = timers.time(Phase::integrate);
     kick_drift(p, p.elastic, s.dt, rot);
