@@ -100,18 +100,16 @@ void register_skip_work_benchmarks() {
       auto name = [&](const char* what) {
         return fmt::format("skip/{}/l0_um:{}/threads:{}", what, l0, t);
       };
-      benchmark::RegisterBenchmark(name("rigid_body:with").c_str(), [=](benchmark::State& st) {
-        run_steps(st, rod(l0, "paper"), t);
-      })->UseManualTime();
-      benchmark::RegisterBenchmark(name("rigid_body:without").c_str(), [=](benchmark::State& st) {
-        run_steps(st, rod(l0, "paper", {"bodies.plate.kind=elastic"}), t);
-      })->UseManualTime();
-      benchmark::RegisterBenchmark(name("walls:walls").c_str(), [=](benchmark::State& st) {
-        run_steps(st, rod(l0, "paper"), t);
-      })->UseManualTime();
-      benchmark::RegisterBenchmark(name("walls:elastic").c_str(), [=](benchmark::State& st) {
-        run_steps(st, rod(l0, "paper", {"bodies.wall.kind=elastic"}), t);
-      })->UseManualTime();
+      // The same rod, each pair differing in one body's kind.
+      const std::pair<const char*, std::vector<std::string>> scenes[] = {
+          {"rigid_body:with", {}},
+          {"rigid_body:without", {"bodies.plate.kind=elastic"}},
+          {"walls:walls", {}},
+          {"walls:elastic", {"bodies.wall.kind=elastic"}}};
+      for (const auto& [scene, overrides] : scenes)
+        benchmark::RegisterBenchmark(name(scene).c_str(), [=, o = overrides](benchmark::State& st) {
+          run_steps(st, rod(l0, "paper", o), t);
+        })->UseManualTime();
       for (bool rotation : {true, false})
         benchmark::RegisterBenchmark(
             name(rotation ? "rotation:on" : "rotation:off").c_str(),
