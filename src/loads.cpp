@@ -1,7 +1,8 @@
 #include "src/loads.hpp"
 
+#include <algorithm>
+
 #include "src/ordered_sum.hpp"
-#include "src/parallel.hpp"
 
 namespace mpsolid {
 
@@ -13,19 +14,25 @@ void centroid(const ParticleStore& p, Range range, double& cx, double& cy) {
   cy = sy / static_cast<double>(range.size());
 }
 
-void apply_loads(ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step) {
+void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step) {
   for (StepLoad& load : loads) {
-    if (step < load.first_step) continue;
-    if (!load.active) {
-      centroid(p, load.range, load.cx_on, load.cy_on);
-      load.active = true;
-    }
+    if (step < load.first_step || load.active) continue;
+    centroid(p, load.range, load.cx_on, load.cy_on);
+    load.active = true;
+  }
+}
+
+void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range block) {
+  for (const StepLoad& load : loads) {
+    if (!load.active) continue;
     const double share = 1.0 / static_cast<double>(load.range.size());
     const double fx = load.fx * share, fy = load.fy * share;
-    parallel_for(load.range.begin, load.range.end, [&](std::size_t i) {
+    const std::size_t b = std::max(block.begin, load.range.begin);
+    const std::size_t e = std::min(block.end, load.range.end);
+    for (std::size_t i = b; i < e; ++i) {
       p.fx[i] += fx;
       p.fy[i] += fy;
-    });
+    }
   }
 }
 

@@ -21,9 +21,13 @@ struct StepLoad {
   double cx_on = 0, cy_on = 0;
 };
 
-// Adds each active load's share to the force arrays (after the force pass).
-// Records the centroid when a load switches on.
-void apply_loads(ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step);
+// Switches on the loads that start at or before `step`, recording the
+// body's centroid (call with the step's start-of-step positions).
+void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step);
+
+// Adds each active load's share to the forces of the particles in `block`
+// (after the force pass), loads in order. Serial: the step calls it per block.
+void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range block);
 
 // Work done by all loads up to the current state.
 double external_work(const ParticleStore& p, const std::vector<StepLoad>& loads);

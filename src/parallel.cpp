@@ -15,24 +15,43 @@ int available_cores() {
 }
 
 namespace detail {
-void parallel_blocks(std::size_t begin, std::size_t end,
-                     void (*block)(void*, std::size_t, std::size_t), void* context) {
+thread_local TeamSlot team_slot;
+
+void fork_join_blocks(std::size_t begin, std::size_t end,
+                      void (*block)(void*, std::size_t, std::size_t), void* context) {
   const std::size_t count = end - begin;
   // Below this size the team wake-up costs more than the work.
   constexpr std::size_t kMinPerThread = 128;
   const int threads = omp_get_max_threads();
-  if (threads == 1 || count < 2 * kMinPerThread) {
+  if (threads == 1 || count < 2 * kMinPerThread || omp_in_parallel()) {
     block(context, begin, end);
     return;
   }
 #pragma omp parallel num_threads(threads)
   {
-    const auto team = static_cast<std::size_t>(omp_get_num_threads());
-    const auto rank = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t b = begin + count * rank / team;
-    const std::size_t e = begin + count * (rank + 1) / team;
-    if (b < e) block(context, b, e);
+    const Range r = static_block(begin, end, static_cast<std::size_t>(omp_get_thread_num()),
+                                 static_cast<std::size_t>(omp_get_num_threads()));
+    if (r.begin < r.end) block(context, r.begin, r.end);
   }
+}
+
+void run_team(void (*body)(void*), void* context) {
+  const int threads = omp_get_max_threads();
+  if (threads == 1 || omp_in_parallel()) {
+    body(context);
+    return;
+  }
+#pragma omp parallel num_threads(threads)
+  {
+    team_slot = {static_cast<std::size_t>(omp_get_thread_num()),
+                 static_cast<std::size_t>(omp_get_num_threads())};
+    body(context);
+    team_slot = {};
+  }
+}
+
+void team_barrier() {
+#pragma omp barrier
 }
 }  // namespace detail
 

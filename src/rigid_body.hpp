@@ -30,7 +30,8 @@ RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range)
 // by dt. Uses the start-of-step positions still stored in p.x, p.y.
 void project_rigid_body(ParticleStore& p, RigidBody& body, double dt, bool with_rotation);
 
-// Places every particle of the body at the pose with the rigid velocity field.
+// Places every particle of the body at the pose with the rigid velocity field
+// (and, with rotation, theta = Theta with its half angles).
 void place_rigid_particles(ParticleStore& p, const RigidBody& body, bool with_rotation);
 
 }  // namespace mpsolid

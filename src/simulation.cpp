@@ -35,11 +35,7 @@ Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
 }
 
 void Simulation::advance(std::int64_t steps) {
-  std::visit(
-      [&](auto& model) {
-        for (std::int64_t k = 0; k < steps; ++k) advance_one_step(model, state_, timers_);
-      },
-      model_);
+  std::visit([&](auto& model) { advance_steps(model, state_, timers_, steps); }, model_);
 }
 
 void Simulation::refresh_fields() {
