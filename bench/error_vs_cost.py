@@ -80,17 +80,25 @@ def rod_answer(folder):
 
 def richardson(values):
     """values at h, h/2, h/4, ... (coarse to fine). Observed order from the
-    three finest, the extrapolated value and its error bar."""
-    f3, f2, f1 = values[-1], values[-2], values[-3]
-    ratio = (f1 - f2) / (f2 - f3) if f2 != f3 else float("inf")
-    order = math.log2(ratio) if ratio > 1 else float("nan")
-    if not math.isfinite(order):
-        return {"order": order, "value": f3, "error": abs(f3 - f2)}
-    best = f3 + (f3 - f2) / (2 ** order - 1)
-    bar = abs(best - f3)
-    if len(values) >= 4:  # the coarser triplet's extrapolation, with the same order
-        coarser = f2 + (f2 - f1) / (2 ** order - 1)
-        bar = max(bar, abs(best - coarser))
+    three finest, the extrapolated value and its error bar: the largest of
+    the distance to the finest value and the distance to the coarser
+    triplet's own extrapolation (or, if that triplet is not yet in the
+    asymptotic range, the last change)."""
+
+    def extrapolate(f1, f2, f3):
+        ratio = (f1 - f2) / (f2 - f3) if f2 != f3 else float("inf")
+        if not (ratio > 1 and math.isfinite(ratio)):
+            return float("nan"), None
+        order = math.log2(ratio)
+        return order, f3 + (f3 - f2) / (2 ** order - 1)
+
+    order, best = extrapolate(*values[-3:])
+    if best is None:
+        return {"order": order, "value": values[-1], "error": abs(values[-1] - values[-2])}
+    bar = abs(best - values[-1])
+    if len(values) >= 4:
+        _, coarser = extrapolate(*values[-4:-1])
+        bar = max(bar, abs(best - coarser) if coarser is not None else abs(values[-1] - values[-2]))
     return {"order": order, "value": best, "error": bar}
 
 
@@ -179,8 +187,10 @@ def main():
 
 
 def rod_error(a, model, extrapolated):
-    ref = extrapolated.get(model) or extrapolated["finite_strain"]
-    return abs(a["peak"] / ref["peak"]["value"] - 1)
+    """Against the model's extrapolated peak; None for a model without a
+    converged series (its error in l0 is at least the 2 -> 1 mm change)."""
+    ref = extrapolated.get(model)
+    return abs(a["peak"] / ref["peak"]["value"] - 1) if ref else None
 
 
 def plate_error(a, model, extrapolated):
@@ -221,8 +231,11 @@ def write_docs(args, rows, conv, extrapolated):
         out.append("")
 
     out += ["## Run time against error", "",
-            "Rod: error of the first peak against the model's extrapolated peak (the paper model,",
-            "which has no converged series, against finite_strain's). Plate (V_f = 0.01): error of",
+            "Rod: error of the first peak against the model's extrapolated peak. Only finite_strain has",
+            "a converged series; the paper and paper_conservative models are not in this table: their",
+            "peak moves by 3.3 % between 2 and 1 mm, and paper_conservative stops at the glued corner",
+            "below 1 mm (listed below), so their error in l0 is at least a few per cent whatever the",
+            "step (their step error alone is under 1e-4, see the convergence table). Plate (V_f = 0.01): error of",
             "the tip period against the model's Richardson-extrapolated period (H/10, H/20, H/40).", "",
             "| problem | model | l0 (mm) | dt | error | wall (s) | Pareto |", "| --- | --- | --- | --- | --- | --- | --- |"]
     table = []
@@ -232,6 +245,8 @@ def write_docs(args, rows, conv, extrapolated):
             failures.append(f"- {problem} {model} l0 = {l0 * 1e3:g} mm, dt {label}: stopped, {a['failed']}")
             continue
         err = rod_error(a, model, extrapolated) if problem == "rod" else plate_error(a, model, extrapolated)
+        if err is None:
+            continue
         table.append((problem, model, l0, label, err, a["wall"]))
     for problem in ["rod", "plate"]:
         sub = [r for r in table if r[0] == problem]
