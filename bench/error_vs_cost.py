@@ -200,7 +200,9 @@ def plate_error(a, model, extrapolated):
 def write_docs(args, rows, conv, extrapolated):
     out = ["# Accuracy and cost: convergence of the rod case, run time against error", "",
            "Written by `bench/error_vs_cost.py` (the numbers below are from one run of it;",
-           f"wall times at {args.threads} threads, one run at a time, set-up included).", ""]
+           f"wall times at {args.threads} thread(s), one run at a time, set-up included; the runs",
+           "were made on a 2-core machine shared with other jobs, so read the wall times as ratios",
+           "within a few tens of per cent).", ""]
     out += ["## Convergence of the rod case (11.2 kN, first peak of plate.x)", "",
             "`time.dt = \"auto\"` at the default safety 0.4, so dt shrinks with l0 (a joint refinement).", "",
             "| model | l0 (mm) | dt (us) | peak (mm) | time of peak (ms) | wall (s) |",
@@ -276,11 +278,12 @@ def plot(table, path):
             continue
         for model, m in markers.items():
             pts = [r for r in sub if r[1] == model]
-            ax.scatter([r[5] for r in pts], [max(r[4], 1e-6) for r in pts], marker=m, label=model)
-            for r in pts:
-                ax.annotate(f"{r[2] * 1e3:g} mm {r[3]}", (r[5], max(r[4], 1e-6)), fontsize=6,
-                            xytext=(3, 3), textcoords="offset points")
+            if pts:
+                ax.scatter([r[5] for r in pts], [max(r[4], 1e-6) for r in pts], marker=m, label=model)
         front = sorted((sub[i] for i in pareto([(r[5], r[4]) for r in sub])), key=lambda r: r[5])
+        for r in front:  # label the front only: the rest is in the table
+            ax.annotate(f"{r[1]} {r[2] * 1e3:g} mm, dt {r[3]}", (r[5], max(r[4], 1e-6)), fontsize=6,
+                        xytext=(3, 3), textcoords="offset points")
         ax.step([r[5] for r in front], [max(r[4], 1e-6) for r in front], where="post", color="k",
                 lw=1, label="Pareto front")
         for level in (0.01, 0.001):
