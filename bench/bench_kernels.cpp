@@ -99,7 +99,8 @@ void register_kernel_benchmarks() {
               fmt::format("kernel/{}/{}/l0_um:{}/threads:{}", kernel_name, model, l0, threads)
                   .c_str(),
               [=, k = kernel](benchmark::State& st) { run_kernel(st, k, model, l0, threads); })
-              ->UseManualTime();
+              ->UseManualTime()
+              ->MinTime(kPerCallMinTime);
     }
 }
 

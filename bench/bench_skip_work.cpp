@@ -107,24 +107,29 @@ void register_skip_work_benchmarks() {
           {"walls:walls", {}},
           {"walls:elastic", {"bodies.wall.kind=elastic"}}};
       for (const auto& [scene, overrides] : scenes)
-        benchmark::RegisterBenchmark(name(scene).c_str(), [=, o = overrides](benchmark::State& st) {
-          run_steps(st, rod(l0, "paper", o), t);
-        })->UseManualTime();
+        benchmark::RegisterBenchmark(
+            name(scene).c_str(),
+            [=, o = overrides](benchmark::State& st) { run_steps(st, rod(l0, "paper", o), t); })
+            ->UseManualTime()
+            ->MinTime(kPerCallMinTime);
       for (bool rotation : {true, false})
         benchmark::RegisterBenchmark(
             name(rotation ? "rotation:on" : "rotation:off").c_str(),
             [=](benchmark::State& st) { run_integrate(st, l0, rotation, t); })
-            ->UseManualTime();
+            ->UseManualTime()
+            ->MinTime(kPerCallMinTime);
       for (int every : {0, 500, 1})
         benchmark::RegisterBenchmark(name(every == 0   ? "diagnostics:none"
                                           : every == 1 ? "diagnostics:every_step"
                                                        : "diagnostics:every_500")
                                          .c_str(),
                                      [=](benchmark::State& st) { run_checks(st, l0, every, t); })
-            ->UseManualTime();
-      benchmark::RegisterBenchmark(name("neighbours").c_str(), [=](benchmark::State& st) {
-        run_neighbours(st, l0, t);
-      })->UseManualTime();
+            ->UseManualTime()
+            ->MinTime(kPerCallMinTime);
+      benchmark::RegisterBenchmark(name("neighbours").c_str(),
+                                   [=](benchmark::State& st) { run_neighbours(st, l0, t); })
+          ->UseManualTime()
+          ->MinTime(kPerCallMinTime);
     }
 }
 

@@ -48,7 +48,8 @@ void register_step_benchmarks() {
         benchmark::RegisterBenchmark(
             fmt::format("step/{}/l0_um:{}/threads:{}", model, l0, threads).c_str(),
             [=](benchmark::State& st) { run_step(st, model, l0, threads); })
-            ->UseManualTime();
+            ->UseManualTime()
+            ->MinTime(kPerCallMinTime);
 }
 
 }  // namespace mpsolid::bench

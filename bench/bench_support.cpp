@@ -27,7 +27,7 @@ std::vector<int> bench_threads() {
 
 int repeats_for(std::size_t particles) {
   return static_cast<int>(
-      std::clamp<std::size_t>(2'000'000 / std::max<std::size_t>(particles, 1), 2, 100));
+      std::clamp<std::size_t>(2'000'000 / std::max<std::size_t>(particles, 1), 2, kMaxRepeats));
 }
 
 void rate_counters(benchmark::State& state, double particles, double bond_entries,

@@ -23,8 +23,16 @@ CaseSpec rod(long l0_um, const std::string& model, std::vector<std::string> over
 std::vector<int> bench_threads();
 
 // Calls per timed iteration for a case of `particles`: enough to hide the
-// parallel region's start, at most 100.
+// parallel region's start, at most kMaxRepeats.
+inline constexpr int kMaxRepeats = 100;
 int repeats_for(std::size_t particles);
+
+// The minimum manual time of a benchmark whose manual time is per call (per
+// step, per kernel call) while one iteration makes up to kMaxRepeats calls.
+// Google Benchmark runs until the manual time reaches its minimum (0.5 s by
+// default), which would be up to 50 s of real time per repetition; this
+// keeps it near 0.5 s. Set with ->UseManualTime()->MinTime(kPerCallMinTime).
+inline constexpr double kPerCallMinTime = 0.5 / kMaxRepeats;
 
 // Times `repeats` calls of body() inside one parallel region (as the step
 // loop runs them) and reports the time per call (UseManualTime).

@@ -4,7 +4,7 @@
 #   bench/run_benchmarks.sh                      # everything, 1 and 2 threads (NAME = bench)
 #   bench/run_benchmarks.sh '^step/'             # a filter (Google Benchmark regex)
 #   bench/run_benchmarks.sh '^step/' step        # ... written as out/bench/step.*
-#   bench/run_benchmarks.sh '^step/' step --benchmark_min_time=0.05   # more flags after NAME
+#   bench/run_benchmarks.sh '^step/' step --benchmark_repetitions=9   # more flags after NAME
 #   MPSOLID_BENCH_THREADS="1 2 4" bench/run_benchmarks.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."

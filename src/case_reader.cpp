@@ -111,6 +111,13 @@ class TableReader {
   std::string string(const std::string& key, const std::string& what) {
     return string(require(key, what), key, what);
   }
+  bool boolean_or(const std::string& key, bool fallback) {
+    const TomlValue* v = find(key);
+    if (!v) return fallback;
+    if (!v->is_boolean()) fail(key, fmt::format("expected true or false, got {}", describe(*v)));
+    return v->as_boolean();
+  }
+
   std::string string_or(const std::string& key, const std::string& fallback) {
     const TomlValue* v = find(key);
     return v ? string(*v, key) : fallback;
@@ -503,8 +510,14 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     r.finish({"check_interval", "max_speed", "min_jacobian", "energy_tolerance"});
   }
 
+  if (const TomlValue* table = top.subtable_or_null("numerics")) {
+    TableReader r(*table, "numerics", file);
+    c.flush_subnormals = r.boolean_or("flush_subnormals", c.flush_subnormals);
+    r.finish({"flush_subnormals"});
+  }
+
   top.finish({"name", "model", "l0", "depth", "materials", "bodies", "loads", "probes", "time",
-              "output", "finite_strain", "stability"});
+              "output", "finite_strain", "stability", "numerics"});
   c.resolved_toml = resolved_case_toml(c);
   return c;
 }
@@ -547,6 +560,7 @@ std::string resolved_case_toml(const CaseSpec& c) {
       "{}\n",
       c.stability.check_interval, format_number(c.stability.max_speed),
       format_number(c.model_options.min_jacobian), format_number(c.stability.energy_tolerance));
+  out += fmt::format("\n[numerics]\nflush_subnormals = {}\n", c.flush_subnormals);
   return out;
 }
 

@@ -89,6 +89,10 @@ struct CaseSpec {
   int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
   ModelOptions model_options;      // hourglass (finite_strain) and min_jacobian (stability)
   StabilitySpec stability;
+  // numerics.flush_subnormals: subnormals flushed to zero in the solver's
+  // loops (src/float_mode.hpp). Opt-in: faster while a wave crosses a fine
+  // lattice, not bit-identical to IEEE in the far field (below 1e-270).
+  bool flush_subnormals = false;
   std::string resolved_toml;  // the case with every default and override filled in
 
   std::int64_t step_count() const;            // steps to reach `end`

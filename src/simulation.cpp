@@ -4,12 +4,14 @@
 
 #include <fmt/format.h>
 
+#include "src/float_mode.hpp"
 #include "src/initial_motion.hpp"
 #include "src/stable_step.hpp"
 
 namespace mpsolid {
 
 Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
+  set_flush_subnormals(spec_.flush_subnormals);
   SetupResult setup = set_up(spec_, timers_);
   state_ = std::move(setup.state);
   body_ranges_ = std::move(setup.body_ranges);
@@ -35,6 +37,7 @@ Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
 }
 
 void Simulation::advance(std::int64_t steps) {
+  set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
   std::visit([&](auto& model) { advance_steps(model, state_, timers_, steps); }, model_);
 }
 

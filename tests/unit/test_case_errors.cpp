@@ -163,6 +163,16 @@ TEST(CaseErrors, TimeStepMustBeANumberOrAuto) {
                      {"bad.toml", "time.safety", "only with dt = \"auto\""});
 }
 
+TEST(CaseErrors, FlushSubnormalsIsABoolean) {
+  EXPECT_INPUT_ERROR(base_toml() + "\n[numerics]\nflush_subnormals = 1\n",
+                     {"bad.toml", "numerics.flush_subnormals", "true or false"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[numerics]\nflush = true\n",
+                     {"bad.toml", "numerics.flush", "flush_subnormals"});
+  EXPECT_TRUE(parse_case(base_toml() + "\n[numerics]\nflush_subnormals = true\n", "bad.toml")
+                  .flush_subnormals);
+  EXPECT_FALSE(parse_case(base_toml(), "bad.toml").flush_subnormals);
+}
+
 TEST(CaseErrors, HistoryIntervalWithinDtAndFrameInterval) {
   EXPECT_INPUT_ERROR(base_toml(), {"output.history_interval", "[dt, frame_interval]"},
                      {"output.history_interval=0.002"});
