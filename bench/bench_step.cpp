@@ -1,6 +1,10 @@
 // The whole step (Simulation::advance: batches of steps in one parallel
 // region), for every model, on the rod at l0 = 2, 1, 0.5, 0.25 mm and each
-// thread count. Time per step; flops are the kernels' hand counts summed.
+// thread count, with IEEE subnormals (the default, flush:0) and with
+// numerics.flush_subnormals (flush:1). Each benchmark starts the rod at rest,
+// so the far field holds subnormals while the wave crosses it (more of them
+// on finer rods and in the far thread's block). Time per step; flops are the
+// kernels' hand counts summed.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -14,9 +18,12 @@
 namespace mpsolid::bench {
 namespace {
 
-void run_step(benchmark::State& state, const std::string& model, long l0_um, int threads) {
+void run_step(benchmark::State& state, const std::string& model, long l0_um, bool flush,
+              int threads) {
   set_thread_count(threads);
-  Simulation sim(rod(l0_um, model));
+  Simulation sim(
+      rod(l0_um, model,
+          {flush ? "numerics.flush_subnormals=true" : "numerics.flush_subnormals=false"}));
   const ParticleStore& p = sim.particles();
   const BondTable& bonds = sim.state().bonds;
   const int steps = repeats_for(p.size());
@@ -44,12 +51,14 @@ void run_step(benchmark::State& state, const std::string& model, long l0_um, int
 void register_step_benchmarks() {
   for (const std::string& model : model_names())
     for (long l0 : kSpacingsUm)
-      for (int threads : bench_threads())
-        benchmark::RegisterBenchmark(
-            fmt::format("step/{}/l0_um:{}/threads:{}", model, l0, threads).c_str(),
-            [=](benchmark::State& st) { run_step(st, model, l0, threads); })
-            ->UseManualTime()
-            ->MinTime(kPerCallMinTime);
+      for (bool flush : {false, true})
+        for (int threads : bench_threads())
+          benchmark::RegisterBenchmark(
+              fmt::format("step/{}/l0_um:{}/flush:{}/threads:{}", model, l0, int{flush}, threads)
+                  .c_str(),
+              [=](benchmark::State& st) { run_step(st, model, l0, flush, threads); })
+              ->UseManualTime()
+              ->MinTime(kPerCallMinTime);
 }
 
 }  // namespace mpsolid::bench
