@@ -64,6 +64,12 @@ def first_peak(t, x):
     raise RuntimeError("no peak: run longer")
 
 
+def threads_of(folder):
+    import json
+    with open(os.path.join(folder, "run.json")) as f:
+        return json.load(f)["threads"]
+
+
 def rod_answer(folder):
     h = read_history(folder)
     try:
@@ -73,8 +79,8 @@ def rod_answer(folder):
         with open(os.path.join(folder, "run.json")) as f:
             d = json.load(f)["diagnosis"]
         return {"failed": f"{d['criterion']} at {d['time'] * 1e3:.2f} ms", "wall": wall_seconds(folder),
-                "dt": read_case(folder)["time"]["dt"]}
-    return {"peak": peak, "time": when, "wall": wall_seconds(folder),
+                "dt": read_case(folder)["time"]["dt"], "threads": threads_of(folder)}
+    return {"peak": peak, "time": when, "wall": wall_seconds(folder), "threads": threads_of(folder),
             "dt": read_case(folder)["time"]["dt"], "history": (h["t"], h["plate.x"])}
 
 
@@ -174,8 +180,9 @@ def main():
                     variants.append((Run("oscillating_plate_linear", model, l0, end, ["time.safety=0.25"],
                                          tag="_s0.25"), "auto x0.25"))
                 for run, label in variants:
-                    a = plate_answer(run.execute(plate_args))
-                    a["wall"] = a["wall_seconds"]
+                    folder = run.execute(plate_args)
+                    a = plate_answer(folder)
+                    a["wall"], a["threads"] = a["wall_seconds"], threads_of(folder)
                     print(f"plate {model} l0 {l0 * 1e3:g} mm {label}: period {a['period']:.5f} s, "
                           f"{a['wall']:.2f} s", flush=True)
                     rows.append(("plate", model, l0, label, a))
@@ -200,17 +207,17 @@ def plate_error(a, model, extrapolated):
 def write_docs(args, rows, conv, extrapolated):
     out = ["# Accuracy and cost: convergence of the rod case, run time against error", "",
            "Written by `bench/error_vs_cost.py` (the numbers below are from one run of it;",
-           f"wall times at {args.threads} thread(s), one run at a time, set-up included; the runs",
-           "were made on a 2-core machine shared with other jobs, so read the wall times as ratios",
-           "within a few tens of per cent).", ""]
+           "wall times one run at a time, set-up included, at the thread count of each row: runs",
+           "found in the caches keep the thread count they were made at). Single runs on a",
+           "2-core virtual machine: read the wall times as ratios good to 10-20 %.", ""]
     out += ["## Convergence of the rod case (11.2 kN, first peak of plate.x)", "",
             "`time.dt = \"auto\"` at the default safety 0.4, so dt shrinks with l0 (a joint refinement).", "",
-            "| model | l0 (mm) | dt (us) | peak (mm) | time of peak (ms) | wall (s) |",
-            "| --- | --- | --- | --- | --- | --- |"]
+            "| model | l0 (mm) | dt (us) | peak (mm) | time of peak (ms) | wall (s) | threads |",
+            "| --- | --- | --- | --- | --- | --- | --- |"]
     for model, runs in conv.items():
         for l0, a in runs:
             out.append(f"| {model} | {l0 * 1e3:g} | {a['dt'] * 1e6:.3f} | {a['peak'] * 1e3:.4f} | "
-                       f"{a['time'] * 1e3:.4f} | {a['wall']:.1f} |")
+                       f"{a['time'] * 1e3:.4f} | {a['wall']:.1f} | {a['threads']} |")
     out += ["", "| model | observed order (peak) | extrapolated peak (mm) | observed order (time) | "
             "extrapolated time of peak (ms) |", "| --- | --- | --- | --- | --- |"]
     for model, e in extrapolated.items():
@@ -239,7 +246,8 @@ def write_docs(args, rows, conv, extrapolated):
             "below 1 mm (listed below), so their error in l0 is at least a few per cent whatever the",
             "step (their step error alone is under 1e-4, see the convergence table). Plate (V_f = 0.01): error of",
             "the tip period against the model's Richardson-extrapolated period (H/10, H/20, H/40).", "",
-            "| problem | model | l0 (mm) | dt | error | wall (s) | Pareto |", "| --- | --- | --- | --- | --- | --- | --- |"]
+            "| problem | model | l0 (mm) | dt | error | wall (s) | threads | Pareto |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     table = []
     failures = []
     for problem, model, l0, label, a in rows:
@@ -249,13 +257,13 @@ def write_docs(args, rows, conv, extrapolated):
         err = rod_error(a, model, extrapolated) if problem == "rod" else plate_error(a, model, extrapolated)
         if err is None:
             continue
-        table.append((problem, model, l0, label, err, a["wall"]))
+        table.append((problem, model, l0, label, err, a["wall"], a["threads"]))
     for problem in ["rod", "plate"]:
         sub = [r for r in table if r[0] == problem]
         front = set(pareto([(r[5], r[4]) for r in sub]))
         for k, r in enumerate(sub):
             out.append(f"| {r[0]} | {r[1]} | {r[2] * 1e3:g} | {r[3]} | {100 * r[4]:.3f} % | {r[5]:.2f} | "
-                       f"{'yes' if k in front else ''} |")
+                       f"{r[6]} | {'yes' if k in front else ''} |")
     out.append("")
     if failures:
         out += ["Runs stopped by a blow-up check before the first peak (not in the table):", ""] + failures + [""]
@@ -290,7 +298,8 @@ def plot(table, path):
             ax.axhline(level, color="grey", ls=":", lw=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("wall time (s)")
+        threads = sorted({r[6] for r in sub})
+        ax.set_xlabel(f"wall time (s) at {' and '.join(map(str, threads))} thread(s)")
         ax.set_ylabel("relative error")
         ax.set_title({"rod": "rod case: first peak of plate.x", "plate": "cantilever plate: tip period"}[problem])
         ax.legend(fontsize=7)
