@@ -26,7 +26,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
-from verification import ROOT, Run, plate_answer, read_case, read_history, wall_seconds  # noqa: E402
+from verification import (ROOT, Run, plate_answer, read_case, read_history, threads_of,  # noqa: E402
+                          wall_seconds)
 
 ROD_END = 0.005
 ROD_MODELS = ["paper", "paper_conservative", "finite_strain"]
@@ -62,12 +63,6 @@ def first_peak(t, x):
             h = t[k + 1] - t[k]
             return b - 0.25 * (a - c) * shift, t[k] + shift * h
     raise RuntimeError("no peak: run longer")
-
-
-def threads_of(folder):
-    import json
-    with open(os.path.join(folder, "run.json")) as f:
-        return json.load(f)["threads"]
 
 
 def rod_answer(folder):
@@ -180,9 +175,8 @@ def main():
                     variants.append((Run("oscillating_plate_linear", model, l0, end, ["time.safety=0.25"],
                                          tag="_s0.25"), "auto x0.25"))
                 for run, label in variants:
-                    folder = run.execute(plate_args)
-                    a = plate_answer(folder)
-                    a["wall"], a["threads"] = a["wall_seconds"], threads_of(folder)
+                    a = plate_answer(run.execute(plate_args))
+                    a["wall"] = a["wall_seconds"]
                     print(f"plate {model} l0 {l0 * 1e3:g} mm {label}: period {a['period']:.5f} s, "
                           f"{a['wall']:.2f} s", flush=True)
                     rows.append(("plate", model, l0, label, a))

@@ -94,6 +94,12 @@ def wall_seconds(folder):
         return json.load(f)["wall_seconds"]
 
 
+def threads_of(folder):
+    import json
+    with open(os.path.join(folder, "run.json")) as f:
+        return json.load(f)["threads"]
+
+
 def lame(material):
     e, nu = material["E"], material["nu"]
     return e * nu / ((1 + nu) * (1 - 2 * nu)), e / (2 * (1 + nu))
@@ -132,7 +138,8 @@ def plate_answer(folder):
     omega = math.sqrt(mat["E"] * PLATE_H ** 2 * k ** 4 / (12 * mat["rho"] * (1 - mat["nu"] ** 2)))
     return {"period": period, "period_theory": 2 * math.pi / omega,
             "amplitude": amplitude, "amplitude_theory": mode["tip_velocity"] / omega,
-            "wall_seconds": wall_seconds(folder), "dt": case["time"]["dt"]}
+            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
+            "dt": case["time"]["dt"]}
 
 
 def wave_answer(folder):
@@ -164,7 +171,8 @@ def wave_answer(folder):
     theory = (math.sqrt((lam + 2 * mu) / mat["rho"]) if held
               else math.sqrt(mat["E"] / ((1 - mat["nu"] ** 2) * mat["rho"])))
     return {"speed": speed, "speed_theory": theory, "held": held,
-            "wall_seconds": wall_seconds(folder), "dt": case["time"]["dt"]}
+            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
+            "dt": case["time"]["dt"]}
 
 
 def spin_answer(folder):
@@ -181,7 +189,8 @@ def spin_answer(folder):
             "kinetic_energy_change": (h["kinetic_energy"][-1] - ke0) / ke0,
             "energy_drift": max(abs(v - e[0]) for v in e) / e[0],
             "turns": body["spin"] * h["t"][-1] / (2 * math.pi),
-            "wall_seconds": wall_seconds(folder), "dt": case["time"]["dt"]}
+            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
+            "dt": case["time"]["dt"]}
 
 
 # ---- the problems and their tolerances --------------------------------------
@@ -255,9 +264,11 @@ def write_docs(path, results, missing):
         return [(run, a) for (k, s), run, a, ok, text in results if k == kind and s == sub]
 
     out = ["# Verification: reference problems with known answers", "",
-           "Written by `tools/verification.py --docs docs` (runs at 1 thread with `time.dt = \"auto\"`:",
-           "the plates at their case files' safety 0.5, the strip and the spinning plate at the default",
-           "0.4). Errors are relative to theory. Wall times are from a machine shared with other jobs.", ""]
+           "Written by `tools/verification.py --docs docs` (runs with `time.dt = \"auto\"`: the plates",
+           "at their case files' safety 0.5, the strip and the spinning plate at the default 0.4).",
+           "Errors are relative to theory. Wall times (with the run's thread count) are single runs on",
+           "a 2-core machine, some of them made while other jobs shared it: read them as a guide to cost.",
+           ""]
     for case, title in [("oscillating_plate_linear", "Cantilever plate, V_f = 0.01 (linear)"),
                         ("oscillating_plate", "Cantilever plate, V_f = 0.05 (nonlinear)")]:
         r = rows("plate", case)
@@ -269,12 +280,13 @@ def write_docs(path, results, missing):
                 f"{a0['amplitude_theory']:.5f} m. The plate is thick (H/L = 0.1): shear and rotary",
                 "inertia (Timoshenko) lengthen its period by roughly 0.5-1 % over thin-plate theory,",
                 "and the nonlinear V_f = 0.05 lengthens it further.", "",
-                "| model | l0 | dt (us) | period (s) | error | amplitude (m) | error | wall (s) |",
+                "| model | l0 | dt (us) | period (s) | error | amplitude (m) | error | wall (s), threads |",
                 "| --- | --- | --- | --- | --- | --- | --- | --- |"]
         for run, a in r:
             out.append(f"| {run.model} | H/{PLATE_H / run.l0:.0f} | {a['dt'] * 1e6:.2f} | {a['period']:.4f} | "
                        f"{100 * (a['period'] / a['period_theory'] - 1):+.2f} % | {a['amplitude']:.5f} | "
-                       f"{100 * (a['amplitude'] / a['amplitude_theory'] - 1):+.2f} % | {a['wall_seconds']:.1f} |")
+                       f"{100 * (a['amplitude'] / a['amplitude_theory'] - 1):+.2f} % | {a['wall_seconds']:.1f}, "
+                       f"{a['threads']} |")
         out.append("")
     for sub, title in [("free", "Wave strip, sides free: plane-strain bar speed"),
                        ("held", "Wave strip, sides held in y: dilatational speed")]:
@@ -300,6 +312,7 @@ def write_docs(path, results, missing):
     if missing:
         out += ["## Not run yet", "", "`tools/verification.py` (without `--cached-only`) runs these:", ""]
         out += [f"- {tag}" for tag in missing] + [""]
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path, "w") as f:
         f.write("\n".join(out))
 
