@@ -279,7 +279,14 @@ def write_docs(path, results, missing):
                 f"Thin-plate theory: period {a0['period_theory']:.4f} s, amplitude "
                 f"{a0['amplitude_theory']:.5f} m. The plate is thick (H/L = 0.1): shear and rotary",
                 "inertia (Timoshenko) lengthen its period by roughly 0.5-1 % over thin-plate theory,",
-                "and the nonlinear V_f = 0.05 lengthens it further.", "",
+                "and the nonlinear V_f = 0.05 lengthens it further."]
+        if case == "oscillating_plate":
+            out += ["At V_f = 0.05 the tip swings through 0.11 m on a 0.2 m plate: its path curves",
+                    "and the plate's end moves inward, so the y amplitude falls below the linear",
+                    "formula V_f c0 / omega. All three models converge to the same amplitude, 7 to 8 %",
+                    "below it, while at V_f = 0.01 they converge to the formula within 0.2 %: the",
+                    "deficit is the large deflection, not the discretisation."]
+        out += ["",
                 "| model | l0 | dt (us) | period (s) | error | amplitude (m) | error | wall (s), threads |",
                 "| --- | --- | --- | --- | --- | --- | --- | --- |"]
         for run, a in r:
