@@ -225,7 +225,8 @@ def write_docs(args, rows, conv, extrapolated):
     plate = [(m[1], e) for m, e in extrapolated.items() if isinstance(m, tuple)]
     if plate:
         out += ["## Convergence of the cantilever plate's period (V_f = 0.01)", "",
-                "H/10, H/20, H/40 at safety 0.5 (the runs of docs/verification.md).", "",
+                "H/10, H/20, H/40 at the plate case's safety 0.5 (the same runs as docs/verification.md",
+                "when `--plate-work` is tools/verification.py's cache).", "",
                 "| model | observed order | extrapolated period (s) | against thin-plate 0.2541 s |",
                 "| --- | --- | --- | --- |"]
         for model, e in plate:
