@@ -104,7 +104,10 @@ def richardson(values):
 
 
 def pareto(points):
-    """Indices of the points no other point beats in both cost and error."""
+    """Indices of the points no other point beats in both cost and error.
+    Errors are compared as the table shows them (to 0.001 %), so a run that
+    only shifts the sixth digit does not make the front."""
+    points = [(c, round(e, 5)) for c, e in points]
     front = []
     for i, (c, e) in enumerate(points):
         if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for c2, e2 in points):
