@@ -258,6 +258,20 @@ void read_body_motion(TableReader& r, BodySpec& b) {
   }
 }
 
+// Calls each(name, value, reader) for every [SECTION.NAME] entry, in name
+// order; an entry that is not a table is refused with what it should hold.
+template <class Each>
+void for_each_named_table(const TomlValue& section, const std::string& section_name,
+                          const std::string& file, const char* holds, Each&& each) {
+  for (const auto& [name, value] : section.as_table()) {
+    if (!value.is_table())
+      throw InputError(fmt::format("{}: {}.{}: expected a table with {}", origin(value, file),
+                                   section_name, name, holds));
+    TableReader r(value, section_name + "." + name, file);
+    each(name, value, r);
+  }
+}
+
 bool rectangles_overlap(const BodySpec& a, const BodySpec& b) {
   return a.x[0] < b.x[1] && b.x[0] < a.x[1] && a.y[0] < b.y[1] && b.y[0] < a.y[1];
 }
@@ -286,24 +300,22 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     const TomlValue& table = top.subtable("materials", "one [materials.NAME] table per material");
     if (table.as_table().empty())
       throw InputError(fmt::format("{}: materials: at least one material is needed", file));
-    for (const auto& [name, value] : table.as_table()) {
-      if (!value.is_table())
-        throw InputError(fmt::format("{}: materials.{}: expected a table with E, nu, rho",
-                                     origin(value, file), name));
-      TableReader r(value, "materials." + name, file);
-      Material m;
-      m.name = name;
-      m.youngs_modulus = r.number("E", "Young's modulus in Pa");
-      r.range_check("E", m.youngs_modulus, m.youngs_modulus > 0, "(0, inf) Pa");
-      m.poisson_ratio = r.number("nu", "Poisson's ratio");
-      r.range_check("nu", m.poisson_ratio, m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5,
-                    "(-1, 0.5)");
-      m.density = r.number("rho", "density in kg/m^3");
-      r.range_check("rho", m.density, m.density > 0, "(0, inf) kg/m^3");
-      r.finish({"E", "nu", "rho"});
-      material_index[name] = static_cast<int>(c.materials.size());
-      c.materials.push_back(m);
-    }
+    for_each_named_table(
+        table, "materials", file, "E, nu, rho",
+        [&](const std::string& name, const TomlValue&, TableReader& r) {
+          Material m;
+          m.name = name;
+          m.youngs_modulus = r.number("E", "Young's modulus in Pa");
+          r.range_check("E", m.youngs_modulus, m.youngs_modulus > 0, "(0, inf) Pa");
+          m.poisson_ratio = r.number("nu", "Poisson's ratio");
+          r.range_check("nu", m.poisson_ratio, m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5,
+                        "(-1, 0.5)");
+          m.density = r.number("rho", "density in kg/m^3");
+          r.range_check("rho", m.density, m.density > 0, "(0, inf) kg/m^3");
+          r.finish({"E", "nu", "rho"});
+          material_index[name] = static_cast<int>(c.materials.size());
+          c.materials.push_back(m);
+        });
   }
 
   // Bodies.
@@ -313,48 +325,50 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
     const TomlValue& table = top.subtable("bodies", "one [bodies.NAME] table per body");
     if (table.as_table().empty())
       throw InputError(fmt::format("{}: bodies: at least one body is needed", file));
-    for (const auto& [name, value] : table.as_table()) {
-      if (!value.is_table())
-        throw InputError(fmt::format("{}: bodies.{}: expected a table with kind, material, x, y",
-                                     origin(value, file), name));
-      TableReader r(value, "bodies." + name, file);
-      BodySpec b;
-      b.name = name;
-      b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
-      const std::string material = r.string("material", "the name of a [materials.NAME] table");
-      if (!material_index.count(material))
-        r.fail("material", fmt::format("no material named '{}' (defined: {})", material, join([&] {
-                                         std::vector<std::string> names;
-                                         for (const auto& m : c.materials) names.push_back(m.name);
-                                         return names;
-                                       }())));
-      b.material = material_index[material];
-      r.pair("x", "the rectangle's x range [x0, x1] in m", b.x);
-      r.pair("y", "the rectangle's y range [y0, y1] in m", b.y);
-      if (!(b.x[0] < b.x[1]))
-        r.fail("x", fmt::format("needs x0 < x1, got [{}, {}]", b.x[0], b.x[1]));
-      if (!(b.y[0] < b.y[1]))
-        r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
-      read_body_motion(r, b);
-      r.finish({"kind", "material", "x", "y", "velocity", "spin", "hold", "bending_mode"});
-      // Estimate in floating point first: integer lattice indices would
-      // overflow for an absurdly small l0.
-      const double estimate = ((b.x[1] - b.x[0]) / c.l0 + 1.0) * ((b.y[1] - b.y[0]) / c.l0 + 1.0);
-      if (!(estimate < kMaxParticles))
-        top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more than "
-                                   "this build supports ({} particles)",
-                                   c.l0, estimate, name, kMaxParticles));
-      const std::int64_t sites =
-          lattice_span(b.x[0], b.x[1], c.l0).count() * lattice_span(b.y[0], b.y[1], c.l0).count();
-      if (sites == 0)
-        throw InputError(fmt::format(
-            "{}: bodies.{}: the body is empty: no lattice site (centre at (k + 1/2) l0, l0 = {} m) "
-            "lies in x = [{}, {}), y = [{}, {})",
-            origin(value, file), name, c.l0, b.x[0], b.x[1], b.y[0], b.y[1]));
-      particle_total += sites;
-      body_index[name] = static_cast<int>(c.bodies.size());
-      c.bodies.push_back(b);
-    }
+    for_each_named_table(
+        table, "bodies", file, "kind, material, x, y",
+        [&](const std::string& name, const TomlValue& value, TableReader& r) {
+          BodySpec b;
+          b.name = name;
+          b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
+          const std::string material = r.string("material", "the name of a [materials.NAME] table");
+          if (!material_index.count(material))
+            r.fail("material",
+                   fmt::format("no material named '{}' (defined: {})", material, join([&] {
+                                 std::vector<std::string> names;
+                                 for (const auto& m : c.materials) names.push_back(m.name);
+                                 return names;
+                               }())));
+          b.material = material_index[material];
+          r.pair("x", "the rectangle's x range [x0, x1] in m", b.x);
+          r.pair("y", "the rectangle's y range [y0, y1] in m", b.y);
+          if (!(b.x[0] < b.x[1]))
+            r.fail("x", fmt::format("needs x0 < x1, got [{}, {}]", b.x[0], b.x[1]));
+          if (!(b.y[0] < b.y[1]))
+            r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
+          read_body_motion(r, b);
+          r.finish({"kind", "material", "x", "y", "velocity", "spin", "hold", "bending_mode"});
+          // Estimate in floating point first: integer lattice indices would
+          // overflow for an absurdly small l0.
+          const double estimate =
+              ((b.x[1] - b.x[0]) / c.l0 + 1.0) * ((b.y[1] - b.y[0]) / c.l0 + 1.0);
+          if (!(estimate < kMaxParticles))
+            top.fail("l0",
+                     fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more than "
+                                 "this build supports ({} particles)",
+                                 c.l0, estimate, name, kMaxParticles));
+          const std::int64_t sites = lattice_span(b.x[0], b.x[1], c.l0).count() *
+                                     lattice_span(b.y[0], b.y[1], c.l0).count();
+          if (sites == 0)
+            throw InputError(
+                fmt::format("{}: bodies.{}: the body is empty: no lattice site (centre at (k + "
+                            "1/2) l0, l0 = {} m) "
+                            "lies in x = [{}, {}), y = [{}, {})",
+                            origin(value, file), name, c.l0, b.x[0], b.x[1], b.y[0], b.y[1]));
+          particle_total += sites;
+          body_index[name] = static_cast<int>(c.bodies.size());
+          c.bodies.push_back(b);
+        });
     for (std::size_t a = 0; a < c.bodies.size(); ++a)
       for (std::size_t b = a + 1; b < c.bodies.size(); ++b)
         if (rectangles_overlap(c.bodies[a], c.bodies[b]))
@@ -372,56 +386,54 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
 
   // Loads.
   if (const TomlValue* table = top.subtable_or_null("loads")) {
-    for (const auto& [name, value] : table->as_table()) {
-      if (!value.is_table())
-        throw InputError(fmt::format("{}: loads.{}: expected a table with body, force, start",
-                                     origin(value, file), name));
-      TableReader r(value, "loads." + name, file);
-      LoadSpec l;
-      l.name = name;
-      const std::string type = r.string_or("type", "step");
-      if (type != "step")
-        r.fail("type", fmt::format("unknown load type '{}' (allowed: step)", type));
-      const std::string body = r.string("body", "the name of a [bodies.NAME] table");
-      if (!body_index.count(body)) {
-        std::vector<std::string> names;
-        for (const auto& b : c.bodies) names.push_back(b.name);
-        r.fail("body", fmt::format("no body named '{}' (defined: {})", body, join(names)));
-      }
-      l.body = body_index[body];
-      if (c.bodies[static_cast<std::size_t>(l.body)].kind == Kind::wall)
-        r.fail(
-            "body",
-            fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing", body));
-      r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
-      l.start = r.number_or("start", 0.0);
-      r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
-      r.finish({"type", "body", "force", "start"});
-      c.loads.push_back(l);
-    }
+    for_each_named_table(
+        *table, "loads", file, "body, force, start",
+        [&](const std::string& name, const TomlValue&, TableReader& r) {
+          LoadSpec l;
+          l.name = name;
+          const std::string type = r.string_or("type", "step");
+          if (type != "step")
+            r.fail("type", fmt::format("unknown load type '{}' (allowed: step)", type));
+          const std::string body = r.string("body", "the name of a [bodies.NAME] table");
+          if (!body_index.count(body)) {
+            std::vector<std::string> names;
+            for (const auto& b : c.bodies) names.push_back(b.name);
+            r.fail("body", fmt::format("no body named '{}' (defined: {})", body, join(names)));
+          }
+          l.body = body_index[body];
+          if (c.bodies[static_cast<std::size_t>(l.body)].kind == Kind::wall)
+            r.fail("body",
+                   fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing",
+                               body));
+          r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
+          l.start = r.number_or("start", 0.0);
+          r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
+          r.finish({"type", "body", "force", "start"});
+          c.loads.push_back(l);
+        });
   }
 
   // Probes.
   if (const TomlValue* table = top.subtable_or_null("probes")) {
-    for (const auto& [name, value] : table->as_table()) {
-      if (!value.is_table())
-        throw InputError(fmt::format("{}: probes.{}: expected a table with at = [x, y]",
-                                     origin(value, file), name));
-      TableReader r(value, "probes." + name, file);
-      ProbeSpec probe;
-      probe.name = name;
-      r.pair("at", "the initial point [x, y] in m whose nearest particle is followed", probe.at);
-      // A point off every body is a typo, not a request to follow a far particle.
-      const bool on_a_body = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const BodySpec& b) {
-        return probe.at[0] >= b.x[0] - c.l0 && probe.at[0] <= b.x[1] + c.l0 &&
-               probe.at[1] >= b.y[0] - c.l0 && probe.at[1] <= b.y[1] + c.l0;
-      });
-      if (!on_a_body)
-        r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body", probe.at[0],
-                                 probe.at[1], c.l0));
-      r.finish({"at"});
-      c.probes.push_back(probe);
-    }
+    for_each_named_table(
+        *table, "probes", file, "at = [x, y]",
+        [&](const std::string& name, const TomlValue&, TableReader& r) {
+          ProbeSpec probe;
+          probe.name = name;
+          r.pair("at", "the initial point [x, y] in m whose nearest particle is followed",
+                 probe.at);
+          // A point off every body is a typo, not a request to follow a far particle.
+          const bool on_a_body =
+              std::any_of(c.bodies.begin(), c.bodies.end(), [&](const BodySpec& b) {
+                return probe.at[0] >= b.x[0] - c.l0 && probe.at[0] <= b.x[1] + c.l0 &&
+                       probe.at[1] >= b.y[0] - c.l0 && probe.at[1] <= b.y[1] + c.l0;
+              });
+          if (!on_a_body)
+            r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body", probe.at[0],
+                                     probe.at[1], c.l0));
+          r.finish({"at"});
+          c.probes.push_back(probe);
+        });
   }
 
   // Time. With dt = "auto" the step is not known yet: intervals are checked
