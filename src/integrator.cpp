@@ -1,6 +1,6 @@
 #include "src/integrator.hpp"
 
-#include <cmath>
+#include "kernels/half_angles.hpp"
 
 namespace mpsolid {
 
@@ -15,9 +15,7 @@ void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
   for (std::size_t i = range.begin; i < range.end; ++i) {
     p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
     p.theta[i] += dt * p.omega[i];
-    // The same expressions as compute_half_angles: the same bits.
-    p.half_cos[i] = std::cos(0.5 * p.theta[i]);
-    p.half_sin[i] = std::sin(0.5 * p.theta[i]);
+    set_half_angle(p, i);
   }
 }
 

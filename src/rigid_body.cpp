@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "kernels/bond_math.hpp"
+#include "kernels/half_angles.hpp"
 #include "src/ordered_sum.hpp"
 #include "src/parallel.hpp"
 
@@ -58,9 +59,7 @@ void project_rigid_body(ParticleStore& p, RigidBody& body, double dt, bool with_
 
 void place_rigid_particles(ParticleStore& p, const RigidBody& body, bool with_rotation) {
   const double c = std::cos(body.angle), s = std::sin(body.angle);
-  // Half angles as compute_half_angles gives them for theta = Theta.
-  const double half_c = with_rotation ? std::cos(0.5 * body.angle) : 1.0;
-  const double half_s = with_rotation ? std::sin(0.5 * body.angle) : 0.0;
+  const HalfAngle half = half_angle(body.angle);  // theta = Theta for every particle
   parallel_for(body.range.begin, body.range.end, [&](std::size_t i) {
     const std::size_t k = i - body.range.begin;
     const double dx = c * body.dx0[k] - s * body.dy0[k];
@@ -72,8 +71,8 @@ void place_rigid_particles(ParticleStore& p, const RigidBody& body, bool with_ro
     if (with_rotation) {
       p.theta[i] = body.angle;
       p.omega[i] = body.omega;
-      p.half_cos[i] = half_c;
-      p.half_sin[i] = half_s;
+      p.half_cos[i] = half.cos;
+      p.half_sin[i] = half.sin;
     }
   });
 }
