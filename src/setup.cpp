@@ -118,17 +118,14 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
     load.fy = l.force[1];
     s.loads.push_back(load);
   }
-  if (spec.dt > 0) schedule_loads(s, spec);
   return result;
 }
 
-}  // namespace mpsolid
-
-namespace mpsolid {
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
   s.dt = spec.dt;
   for (std::size_t k = 0; k < spec.loads.size(); ++k)
     s.loads[k].first_step =
         static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
 }
+
 }  // namespace mpsolid

@@ -14,11 +14,12 @@ struct SetupResult {
   std::vector<std::size_t> probes;  // storage index of each probe's particle (case order)
 };
 
-// Particles, bonds, rigid bodies, holds and probes. Loads are scheduled when
-// spec.dt is known (at once unless dt is "auto").
+// Particles, bonds, rigid bodies, holds, probes and loads; the loads' first
+// steps and the state's dt are set by schedule_loads once dt is known
+// (after the estimate when dt is "auto").
 SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers);
 
-// Sets the state's step and each load's first step k (k dt >= start).
+// Sets the state's dt and each load's first step k (k dt >= start).
 void schedule_loads(SolverState& s, const CaseSpec& spec);
 
 }  // namespace mpsolid
