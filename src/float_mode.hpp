@@ -4,8 +4,8 @@
 //
 // Ahead of a wave front the explicit scheme leaves displacements, velocities
 // and forces that decay geometrically with distance; far from the front they
-// fall below 2.2e-308, where x86 arithmetic on subnormals costs about a
-// hundred cycles per operation. Flushing them (FTZ) and reading them as zero
+// fall below 2.2e-308, where arithmetic on subnormals is many times slower
+// than on normal numbers (a microcode assist on x86). Flushing them (FTZ) and reading them as zero
 // (DAZ) makes the paper model's steps on a 1 mm rod at rest up to 1.65x
 // faster and a 0.5 mm rod's first 5,000 steps 1.42x (docs/performance.md);
 // once the wave has crossed the rod it changes nothing. Positions and
