@@ -9,8 +9,8 @@
 #include "bench/bench_support.hpp"
 #include "bench/flop_counts.hpp"
 #include "bench/registry.hpp"
-#include "src/models.hpp"
-#include "src/simulation.hpp"
+#include "kernels/model_registry.hpp"
+#include "src/solver/simulation.hpp"
 
 namespace mpsolid::bench {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/registry.hpp"
-#include "src/simulation.hpp"
+#include "src/solver/simulation.hpp"
 
 namespace mpsolid::bench {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "src/case_reader.hpp"
+#include "src/case/case_reader.hpp"
 
 namespace mpsolid::bench {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "src/case_spec.hpp"
-#include "src/parallel.hpp"
+#include "src/case/case_spec.hpp"
+#include "src/core/parallel.hpp"
 
 namespace mpsolid::bench {
 

@@ -2,8 +2,8 @@
 """Memory of the rod case at large sizes (issue 6): peak resident memory of a
 short mpsolid run at each l0, its bytes per particle (bonds included), the
 marginal bytes per particle between the sizes (fixed overheads cancel), and
-the bytes the data structures should take (src/particle_store.hpp,
-src/bonds.hpp), so that the measurement can be checked against the layout.
+the bytes the data structures should take (src/core/particle_store.hpp,
+src/core/bonds.hpp), so that the measurement can be checked against the layout.
 
   bench/memory_rod.py [--l0 1.264e-4 6.32e-5] [--steps 10] [--threads 2] [--out out/bench]
 

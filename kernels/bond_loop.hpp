@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "kernels/bond_math.hpp"
-#include "src/bonds.hpp"
-#include "src/particle_store.hpp"
+#include "src/core/bonds.hpp"
+#include "src/core/particle_store.hpp"
 
 namespace mpsolid {
 

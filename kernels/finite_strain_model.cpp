@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "src/parallel.hpp"
-#include "src/types.hpp"
+#include "src/core/parallel.hpp"
+#include "src/core/types.hpp"
 
 namespace mpsolid {
 

@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "kernels/model_common.hpp"
-#include "src/bonds.hpp"
-#include "src/particle_store.hpp"
+#include "src/core/bonds.hpp"
+#include "src/core/particle_store.hpp"
 
 namespace mpsolid {
 

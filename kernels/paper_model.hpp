@@ -22,9 +22,9 @@
 
 #include "kernels/bond_loop.hpp"
 #include "kernels/model_common.hpp"
-#include "src/bonds.hpp"
-#include "src/parallel.hpp"
-#include "src/particle_store.hpp"
+#include "src/core/bonds.hpp"
+#include "src/core/parallel.hpp"
+#include "src/core/particle_store.hpp"
 
 namespace mpsolid {
 

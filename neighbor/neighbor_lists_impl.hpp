@@ -2,7 +2,7 @@
 // Template part of neighbor_lists.hpp.
 #include <algorithm>
 
-#include "src/parallel.hpp"
+#include "src/core/parallel.hpp"
 
 namespace mpsolid {
 

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "src/history_writer.hpp"
-#include "src/simulation.hpp"
+#include "src/io/history_writer.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "src/case_reader.hpp"
-#include "src/simulation.hpp"
+#include "src/case/case_reader.hpp"
+#include "src/solver/simulation.hpp"
 
 namespace mpsolid::testing {
 

@@ -6,7 +6,7 @@
 
 #include "kernels/bond_math.hpp"
 #include "kernels/paper_model.hpp"
-#include "src/simulation.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "src/case_reader.hpp"
-#include "src/types.hpp"
+#include "src/case/case_reader.hpp"
+#include "src/core/types.hpp"
 
 namespace mpsolid {
 namespace {

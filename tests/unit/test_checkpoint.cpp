@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "src/case_reader.hpp"
-#include "src/checkpoint.hpp"
-#include "src/parallel.hpp"
+#include "src/case/case_reader.hpp"
+#include "src/core/parallel.hpp"
+#include "src/io/checkpoint.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

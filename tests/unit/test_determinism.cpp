@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "src/models.hpp"
-#include "src/parallel.hpp"
-#include "src/simulation.hpp"
+#include "kernels/model_registry.hpp"
+#include "src/core/parallel.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <vector>
 
-#include "src/float_mode.hpp"
-#include "src/parallel.hpp"
-#include "src/simulation.hpp"
+#include "src/core/float_mode.hpp"
+#include "src/core/parallel.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

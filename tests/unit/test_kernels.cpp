@@ -7,8 +7,8 @@
 #include <random>
 
 #include "kernels/paper_model.hpp"
-#include "kernels/reference_kernels.hpp"
-#include "src/simulation.hpp"
+#include "kernels/reference/reference_kernels.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -6,8 +6,8 @@
 #include <random>
 
 #include "neighbor/neighbor_lists.hpp"
-#include "src/bonds.hpp"
-#include "src/simulation.hpp"
+#include "src/core/bonds.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "src/simulation.hpp"
-#include "src/stability.hpp"
+#include "src/core/stability.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

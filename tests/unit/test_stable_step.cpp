@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "src/parallel.hpp"
+#include "src/core/parallel.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -4,7 +4,7 @@
 // every 10 us, peak refined by a parabola (2026-11-23, docs/accuracy.md).
 #include <gtest/gtest.h>
 
-#include "src/simulation.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "src/run.hpp"
-#include "src/simulation.hpp"
+#include "src/app/run.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {

@@ -1,0 +1,77 @@
+// mpsolid: the command line.
+//   mpsolid run CASE [--out DIR] [--threads N] [--set KEY=VALUE]...
+//   mpsolid resume DIR [--threads N] [--set time.end=VALUE]...
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <exception>
+
+#include "src/app/progress.hpp"
+#include "src/app/run.hpp"
+#include "src/app/signals.hpp"
+#include "src/case/case_reader.hpp"
+#include "src/core/parallel.hpp"
+
+int main(int argc, char** argv) {
+  using namespace mpsolid;
+  CLI::App app{"mpsolid: elastic MPS solver for shock-loaded elastic bodies (2D plane strain)"};
+  app.require_subcommand(1);
+  std::string case_path, out_dir;
+  int threads = 0;
+  std::vector<std::string> overrides;
+  CLI::App* run = app.add_subcommand("run", "run a case file");
+  run->add_option("case", case_path, "case file (TOML)")->required();
+  run->add_option("--out", out_dir, "output folder (default: out/<case name>)");
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
+      ->type_name("KEY=VALUE");
+  std::string resume_dir;
+  CLI::App* resume = app.add_subcommand(
+      "resume", "continue a run from its last checkpoint (DIR/checkpoint.h5), to the same bits");
+  resume->add_option("dir", resume_dir, "the run's output folder")->required();
+  resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  resume
+      ->add_option("--set", overrides,
+                   "go on to a later end: --set time.end=0.02 (also output.checkpoint_interval, "
+                   "output.compression)")
+      ->type_name("KEY=VALUE");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  std::string command_line;
+  for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+  try {
+    install_stop_handlers();
+    if (resume->parsed()) {
+      RunOptions options;
+      options.out_dir = resume_dir;
+      options.threads = threads > 0 ? threads : available_cores();
+      options.progress = stderr_is_terminal();
+      options.command_line = command_line;
+      return resume_run(overrides, options);
+    }
+    const CaseSpec spec = read_case(case_path, overrides);
+    RunOptions options;
+    options.out_dir =
+        out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);
+    options.threads = threads > 0 ? threads : available_cores();
+    options.progress = stderr_is_terminal();
+    options.command_line = command_line;
+    return run_case(spec, options);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "mpsolid: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "mpsolid: failed: {}\n", e.what());
+    return kExitError;
+  }
+}

@@ -1,0 +1,41 @@
+#include "src/app/progress.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace mpsolid {
+
+bool stderr_is_terminal() {
+  return ::isatty(STDERR_FILENO) == 1;
+}
+
+Progress::Progress(std::int64_t total_steps, double dt, bool enabled)
+    : total_(total_steps), dt_(dt), enabled_(enabled), start_(Clock::now()), last_(start_) {}
+
+void Progress::update(std::int64_t step) {
+  if (!enabled_) return;
+  const auto now = Clock::now();
+  if (start_step_ < 0) {
+    start_step_ = step;
+    start_ = now;
+  }
+  if (now - last_ < std::chrono::milliseconds(500)) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = elapsed > 0 ? static_cast<double>(step - start_step_) / elapsed : 0.0;
+  const double eta = rate > 0 ? static_cast<double>(total_ - step) / rate : 0.0;
+  std::fprintf(stderr, "\r  t = %.4g ms / %.4g ms  (%5.1f %%)  %.3g steps/s  ETA %.0f s   ",
+               1e3 * static_cast<double>(step) * dt_, 1e3 * static_cast<double>(total_) * dt_,
+               100.0 * static_cast<double>(step) / static_cast<double>(total_), rate, eta);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void Progress::finish() {
+  if (drawn_) std::fprintf(stderr, "\n");
+  drawn_ = false;
+}
+
+}  // namespace mpsolid

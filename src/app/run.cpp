@@ -1,0 +1,267 @@
+#include "src/app/run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <limits>
+#include <optional>
+
+#include "src/app/progress.hpp"
+#include "src/app/signals.hpp"
+#include "src/case/case_reader.hpp"
+#include "src/core/parallel.hpp"
+#include "src/core/state_snapshot.hpp"
+#include "src/io/atomic_file.hpp"
+#include "src/io/checkpoint.hpp"
+#include "src/io/run_folder.hpp"
+#include "src/io/run_report.hpp"
+#include "src/solver/simulation.hpp"
+
+namespace mpsolid {
+
+namespace {
+std::string body_of(const Simulation& sim, std::size_t i) {
+  return sim.spec().bodies[static_cast<std::size_t>(sim.particles().body[i])].name;
+}
+
+std::string describe_particle(const Simulation& sim, std::size_t i) {
+  const ParticleStore& p = sim.particles();
+  return fmt::format(
+      "particle {} (body {}, initial position ({:.4g}, {:.4g}) mm, now ({:.4g}, "
+      "{:.4g}) mm)",
+      p.id[i], body_of(sim, i), 1e3 * p.x0[i], 1e3 * p.y0[i], 1e3 * p.x[i], 1e3 * p.y[i]);
+}
+
+// Where, when and which criterion, in words (the state is the failing one).
+std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
+                             std::int64_t last_good_step) {
+  std::string text = fmt::format(
+      "{} at t = {:.6g} s (step {}, checked every {} steps; last good "
+      "check at step {}): {}",
+      v.criterion, sim.time(), sim.step(), sim.spec().stability.check_interval, last_good_step,
+      describe_particle(sim, v.particle));
+  if (v.has_neighbor) text += ", bonded to " + describe_particle(sim, v.neighbor);
+  return text;
+}
+
+std::string failure_json(const Simulation& sim, const StabilityVerdict& v,
+                         std::int64_t last_good_step) {
+  const ParticleStore& p = sim.particles();
+  const std::size_t i = v.particle;
+  return fmt::format(
+      "{{\"criterion\": {}, \"time\": {:.17g}, \"step\": {}, \"particle_id\": {}, "
+      "\"body\": {}, \"initial_position\": [{:.17g}, {:.17g}], \"position\": [{:.17g}, "
+      "{:.17g}], \"neighbor_id\": {}, \"value\": {:.17g}, \"last_good_step\": {}, "
+      "\"last_good_time\": {:.17g}}}",
+      json_quoted(v.criterion), sim.time(), sim.step(), p.id[i], json_quoted(body_of(sim, i)),
+      p.x0[i], p.y0[i], p.x[i], p.y[i], v.has_neighbor ? std::to_string(p.id[v.neighbor]) : "null",
+      v.value, last_good_step, static_cast<double>(last_good_step) * sim.spec().dt);
+}
+
+void print_summary(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {
+  const double rate =
+      facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0;
+  fmt::print("mpsolid: {} ({} model) {}: {} steps to t = {:.6g} s in {:.3g} s wall, {} threads\n",
+             sim.spec().name, sim.spec().model, facts.outcome, facts.steps, sim.time(),
+             facts.wall_seconds, facts.threads);
+  fmt::print("  {} particles, {} bonds; {:.4g} steps/s, {:.4g} particle-steps/s\n",
+             sim.particles().size(), sim.state().bonds.entry_count() / 2, rate,
+             rate * static_cast<double>(sim.particles().size()));
+  if (const StableStepEstimate& e = sim.stable_step(); e.iterations > 0)
+    fmt::print(
+        "  dt = {:.6g} s (auto: safety {} x limit {:.6g} s, omega_max {:.6g} rad/s, {} power "
+        "iterations{})\n",
+        sim.spec().dt, sim.spec().dt_safety, e.dt_limit, e.omega_max, e.iterations,
+        e.converged ? "" : ", not converged");
+  fmt::print("  {} frames, {:.3g} MB written ({:.3g} kB per frame) to {}\n", facts.frames,
+             static_cast<double>(facts.bytes_written) / 1e6,
+             facts.frames ? static_cast<double>(facts.bytes_written) / 1e3 / facts.frames : 0.0,
+             options.out_dir.string());
+  fmt::print("  {} checkpoints, {:.3g} MB, {:.3g} s ({:.2g} % of the wall time)\n",
+             facts.checkpoints, static_cast<double>(facts.checkpoint_bytes) / 1e6,
+             facts.checkpoint_seconds,
+             facts.wall_seconds > 0 ? 100 * facts.checkpoint_seconds / facts.wall_seconds : 0.0);
+  std::string table = "  phase seconds:";
+  for (std::size_t k = 0; k < kPhaseNames.size(); ++k)
+    table += fmt::format(" {} {:.3g}", kPhaseNames[k], sim.timers().seconds(static_cast<Phase>(k)));
+  fmt::print("{} checkpoint {:.3g}\n", table, facts.checkpoint_seconds);
+}
+
+// The step after `step` on a cadence of `every` steps (none when every is 0).
+std::int64_t next_on_cadence(std::int64_t step, std::int64_t every) {
+  return every > 0 ? (step / every + 1) * every : std::numeric_limits<std::int64_t>::max();
+}
+
+// The loop with outputs, from the state in `sim` (set up, or restored from a
+// checkpoint) to the end of the case, a stop signal or a blow-up. `fresh`:
+// the run starts at step 0 and writes its first frame and checkpoint.
+int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOptions& options,
+             bool fresh) {
+  const CaseSpec& spec = sim.spec();
+  const auto wall_start = facts.started;
+
+  // Writes the current state as a frame (its fields must be fresh).
+  std::int64_t last_frame_step = -1;
+  auto write_frame = [&](const Diagnostics& d) {
+    auto t = sim.timers().time(Phase::output);
+    outputs.write_frame(sim, d);
+    last_frame_step = sim.step();
+  };
+  // A checkpoint of the current state; the segment is "interrupted" in it
+  // unless it is the run's last.
+  auto checkpoint = [&](const std::string& outcome) {
+    RunFacts now = facts;
+    now.outcome = outcome;
+    outputs.checkpoint(sim, now);
+  };
+
+  const std::int64_t total = spec.step_count();
+  const std::int64_t cadence = spec.steps_per_frame();
+  const std::int64_t history_every = spec.steps_per_history();
+  const std::int64_t check_every = spec.stability.check_interval;
+  const std::int64_t checkpoint_every = spec.steps_per_checkpoint();
+  // Steps between looks at the stop flag: about 2e7 particle-steps (well
+  // under a second), at most 2000.
+  const std::int64_t chunk = std::clamp<std::int64_t>(
+      20'000'000 / static_cast<std::int64_t>(std::max<std::size_t>(1, sim.particles().size())), 1,
+      2000);
+  Progress progress(total, spec.dt, options.progress);
+  if (fresh) {
+    write_frame(sim.diagnostics());
+    checkpoint("interrupted");
+  }
+  StateSnapshot last_good = StateSnapshot::capture(sim.state());
+  while (sim.step() < total) {
+    const std::int64_t next_frame = std::min(total, (sim.step() / cadence + 1) * cadence);
+    const std::int64_t next_check = std::min(
+        {next_frame, next_on_cadence(sim.step(), history_every),
+         next_on_cadence(sim.step(), check_every), next_on_cadence(sim.step(), checkpoint_every)});
+    while (sim.step() < next_check && !stop_requested()) {
+      sim.advance(std::min(chunk, next_check - sim.step()));
+      progress.update(sim.step());
+    }
+    Diagnostics d;
+    const StabilityVerdict verdict = sim.check_stability(&d);
+    if (!verdict.ok) {
+      progress.finish();
+      facts.outcome = "unstable";
+      facts.diagnosis = describe_failure(sim, verdict, last_good.step);
+      facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
+      // Keep the last good state as the final frame of the outputs.
+      last_good.restore(sim.state());
+      if (sim.step() != last_frame_step) write_frame(sim.diagnostics());
+      break;
+    }
+    last_good = StateSnapshot::capture(sim.state());
+    if (sim.step() == next_frame) write_frame(d);
+    if (sim.step() % history_every == 0) {
+      auto t = sim.timers().time(Phase::output);
+      outputs.write_history(sim, d);
+    }
+    if (sim.step() == total) break;
+    if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0 &&
+        sim.step() > outputs.last_checkpoint_step())
+      checkpoint("interrupted");
+    if (stop_requested()) {
+      facts.outcome = fmt::format("stopped by {}", stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT");
+      break;
+    }
+  }
+  progress.finish();
+
+  facts.steps = sim.step() - facts.start_step;
+  facts.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  {
+    auto t = sim.timers().time(Phase::output);
+    outputs.publish();
+  }
+  // The last checkpoint of the run; an unstable state is not one to go on from.
+  if (facts.outcome != "unstable") checkpoint(facts.outcome);
+  outputs.fill(facts);
+  facts.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  write_file_atomically(options.out_dir / "run.json",
+                        run_report_json(sim, facts, outputs.previous_segments()));
+  print_summary(sim, facts, options);
+  if (facts.outcome.rfind("stopped", 0) == 0) {
+    fmt::print(stderr,
+               "mpsolid: {} at t = {:.6g} s (step {}); checkpoint and outputs are in {}. Continue "
+               "with: mpsolid resume {}\n",
+               facts.outcome, sim.time(), sim.step(), options.out_dir.string(),
+               options.out_dir.string());
+    return kExitStopped;
+  }
+  if (facts.outcome == "unstable") {
+    fmt::print(stderr,
+               "mpsolid: unstable: {}\n  The last good state (t = {:.6g} s) is the last "
+               "frame of {} and {}.\n",
+               facts.diagnosis, sim.time(), (options.out_dir / "history.csv").string(),
+               (options.out_dir / "frames.h5").string());
+    return kExitUnstable;
+  }
+  return kExitOk;
+}
+
+// `--set` keys a resumed run may change: the rest would make it another case.
+const std::vector<std::string> kResumeKeys = {"time.end", "output.checkpoint_interval",
+                                              "output.compression"};
+}  // namespace
+
+int run_case(const CaseSpec& spec, const RunOptions& options) {
+  set_thread_count(options.threads);
+  RunFacts facts;
+  facts.command_line = options.command_line;
+  facts.threads = thread_count();
+  Simulation sim(spec);
+  RunOutputs outputs(options.out_dir, sim);
+  return run_loop(sim, outputs, facts, options, true);
+}
+
+int resume_run(const std::vector<std::string>& overrides, const RunOptions& options) {
+  const std::filesystem::path path = RunOutputs::checkpoint_path(options.out_dir);
+  for (const std::string& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (std::find(kResumeKeys.begin(), kResumeKeys.end(), key) == kResumeKeys.end())
+      throw InputError(fmt::format(
+          "--set {}: a resumed run keeps its case; it may change only {} (run the case afresh "
+          "to change anything else)",
+          o, fmt::join(kResumeKeys, ", ")));
+  }
+  const Checkpoint checkpoint = read_checkpoint(path);
+  const CaseSpec spec = parse_case(checkpoint.case_toml, path.string(), overrides);
+  const double at = static_cast<double>(checkpoint.step) * spec.dt;
+  if (spec.step_count() < checkpoint.step)
+    throw InputError(fmt::format("time.end = {} s is before the checkpoint (t = {} s, step {})",
+                                 spec.end, at, checkpoint.step));
+  if (spec.step_count() == checkpoint.step)
+    throw InputError(fmt::format(
+        "{}: the run already reached its end (t = {} s, step {}); continue it with --set "
+        "time.end=LATER",
+        path.string(), at, checkpoint.step));
+
+  set_thread_count(options.threads);
+  RunFacts facts;
+  facts.command_line = options.command_line;
+  facts.threads = thread_count();
+  facts.start_step = checkpoint.step;
+  Simulation sim(spec);
+  restore_state(sim, checkpoint, path.string());
+  const auto clean_up = [&] {
+    for (const char* name : {"history.csv", "frames.h5"})
+      std::filesystem::remove(staging_path(options.out_dir / name));
+  };
+  std::optional<RunOutputs> outputs;
+  try {
+    outputs.emplace(options.out_dir, sim, checkpoint);
+  } catch (const InputError&) {
+    clean_up();  // a refused resume leaves the folder as it was
+    throw;
+  }
+  return run_loop(sim, *outputs, facts, options, false);
+}
+
+}  // namespace mpsolid

@@ -1,0 +1,41 @@
+#pragma once
+// The simulation loop with outputs: frames on the integer-step cadence,
+// history.csv, frames.h5, case.resolved.toml and run.json, progress on a
+// terminal and a closing summary.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "src/case/case_spec.hpp"
+
+namespace mpsolid {
+
+struct RunOptions {
+  std::filesystem::path out_dir;
+  int threads = 1;
+  bool progress = false;
+  std::string command_line;
+};
+
+// kExitStopped: a stop signal (SIGINT, SIGTERM) ended the run after writing a
+// checkpoint and the outputs; `mpsolid resume` continues it.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitError = 1,
+  kExitBadInput = 2,
+  kExitUnstable = 3,
+  kExitStopped = 4
+};
+
+// Runs the case to its end (or a stop signal, or a blow-up) in options.out_dir;
+// returns the process exit code.
+int run_case(const CaseSpec& spec, const RunOptions& options);
+
+// Continues the run in options.out_dir from its checkpoint.h5, to the stored
+// case's end or a later time.end given in `overrides` (only time.end,
+// output.checkpoint_interval and output.compression may change). Throws
+// InputError, before anything is written, for a missing, damaged or foreign
+// checkpoint or outputs that do not match it.
+int resume_run(const std::vector<std::string>& overrides, const RunOptions& options);
+
+}  // namespace mpsolid

@@ -1,0 +1,111 @@
+#pragma once
+// A fully validated case, in SI units. Produced by read_case(); everything
+// downstream trusts it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kernels/model_common.hpp"
+#include "src/core/material.hpp"
+#include "src/core/types.hpp"
+
+namespace mpsolid {
+
+// The first bending mode of a clamped-free beam along x (MODEL.md section 6):
+// v_y(x) = tip_velocity f(s) / f(L) with s = x - root_x and
+// f(s) = M (cos ks - cosh ks) - N (sin ks - sinh ks),
+// M = sin kL + sinh kL, N = cos kL + cosh kL.
+struct BendingMode {
+  double root_x = 0;        // the clamped end (m)
+  double length = 0;        // L (m)
+  double kl = 1.875;        // k L of the mode
+  double tip_velocity = 0;  // v_y at s = L (m/s)
+};
+
+// Velocity components a body's particles are held at zero in (frictionless
+// rollers): for a strip whose sides may not move in y, say.
+enum class Hold : std::int8_t { none = 0, x = 1, y = 2 };
+
+struct BodySpec {
+  std::string name;
+  Kind kind = Kind::elastic;
+  int material = 0;      // index into CaseSpec::materials
+  double x[2] = {0, 0};  // rectangle [x0, x1] (m)
+  double y[2] = {0, 0};  // rectangle [y0, y1] (m)
+  // Initial motion: a uniform velocity, plus a spin (rad/s) about the centroid
+  // of the body's sites, plus (elastic bodies) a bending mode.
+  double velocity[2] = {0, 0};
+  double spin = 0;
+  bool has_mode = false;
+  BendingMode mode;
+  Hold hold = Hold::none;
+};
+
+// A named probe: the particle nearest `at` in the initial configuration
+// (lowest id on a tie), recorded in history.csv as probe.NAME.x / .y.
+struct ProbeSpec {
+  std::string name;
+  double at[2] = {0, 0};
+};
+
+// A step force: total force (N over the depth) on a body from `start` on,
+// shared equally by its particles.
+struct LoadSpec {
+  std::string name;
+  int body = 0;  // index into CaseSpec::bodies
+  double force[2] = {0, 0};
+  double start = 0;
+};
+
+// Blow-up checks, run every `check_interval` steps.
+struct StabilitySpec {
+  std::int64_t check_interval = 500;  // steps
+  double max_speed = 1.0;             // in units of the largest dilatational wave speed
+  double energy_tolerance = 0.1;      // |KE + PE - W - E0| / max(W, E0)
+};
+
+struct CaseSpec {
+  std::string name;    // output folder name (default: the file's stem)
+  std::string source;  // the case file it came from
+  std::string model = "paper";
+  double l0 = 0;       // lattice spacing (m)
+  double depth = 1.0;  // out-of-plane depth D (m)
+  std::vector<Material> materials;
+  std::vector<BodySpec> bodies;  // in name order: this fixes the particle ids
+  std::vector<LoadSpec> loads;
+  std::vector<ProbeSpec> probes;  // in name order
+  double dt = 0;                  // s; 0 until chosen when dt_auto
+  // time.dt = "auto": the step is chosen at set-up as dt_safety times the
+  // model's linear stability limit 2 / omega_max (src/stable_step.hpp).
+  // Compression stiffens the models, so the limit shrinks during a run: 0.4
+  // is the largest safety that ran the rod at 11.2 and 55.9 kN with every
+  // model that is stable there at 10 ns, at l0 = 2 and 1 mm (docs/accuracy.md).
+  bool dt_auto = false;
+  double dt_safety = 0.4;
+  double end = 0;
+  double frame_interval = 0;
+  double history_interval = 0;     // s; a history.csv row this often (and at frames)
+  double checkpoint_interval = 0;  // s; 0: only at the end of the run (and on a stop signal)
+  int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
+  ModelOptions model_options;      // hourglass (finite_strain) and min_jacobian (stability)
+  StabilitySpec stability;
+  // numerics.flush_subnormals: subnormals flushed to zero in the solver's
+  // loops (src/float_mode.hpp). Opt-in: faster while a wave crosses a fine
+  // lattice, not bit-identical to IEEE in the far field (below 1e-270).
+  bool flush_subnormals = false;
+  std::string resolved_toml;  // the case with every default and override filled in
+
+  std::int64_t step_count() const;            // steps to reach `end`
+  std::int64_t steps_per_frame() const;       // output cadence in steps
+  std::int64_t steps_per_history() const;     // history.csv cadence in steps
+  std::int64_t steps_per_checkpoint() const;  // checkpoint cadence in steps; 0: none
+  // An automatic step, once chosen: sets dt (rounded down so that the finest
+  // output interval is a whole number of steps) and notes it in resolved_toml.
+  void set_auto_time_step(double limit, double omega_max);
+};
+
+// The case as TOML with every default and override filled in; reads back as
+// the same case.
+std::string resolved_case_toml(const CaseSpec& c);
+
+}  // namespace mpsolid

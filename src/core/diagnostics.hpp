@@ -1,0 +1,39 @@
+#pragma once
+// Whole-system figures at a frame: energies (MODEL.md section 4b), momenta
+// (about the origin, spins included) and the largest speed.
+#include "src/solver/step.hpp"
+
+namespace mpsolid {
+
+struct Diagnostics {
+  double kinetic_energy = 0;  // translational + rotational
+  double strain_energy = 0;
+  double external_work = 0;
+  double momentum_x = 0, momentum_y = 0;
+  double angular_momentum = 0;
+  double max_speed = 0;
+};
+
+// Kinetic energy, momenta and max speed of the moving particles.
+Diagnostics motion_diagnostics(const ParticleStore& p);
+
+// Everything; `particle_energy(i)` is the model's strain energy of particle i
+// (the strain pass must be current).
+template <class ParticleEnergy>
+Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy);
+
+}  // namespace mpsolid
+
+#include "src/core/ordered_sum.hpp"
+
+namespace mpsolid {
+template <class ParticleEnergy>
+Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy) {
+  Diagnostics d = motion_diagnostics(s.particles);
+  d.strain_energy = ordered_sum<1>(0, s.particles.size(), [&](std::size_t i) {
+    return std::array<double, 1>{particle_energy(i)};
+  })[0];
+  d.external_work = external_work(s.particles, s.loads);
+  return d;
+}
+}  // namespace mpsolid

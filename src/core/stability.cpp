@@ -1,0 +1,67 @@
+#include "src/core/stability.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpsolid {
+
+StabilityVerdict check_finite(const ParticleStore& p) {
+  StabilityVerdict v;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.vx[i]) &&
+        std::isfinite(p.vy[i]) && std::isfinite(p.theta[i]) && std::isfinite(p.omega[i]))
+      continue;
+    v.ok = false;
+    v.criterion = "non-finite state (NaN or Inf in position, velocity or rotation)";
+    v.particle = i;
+    return v;
+  }
+  return v;
+}
+
+StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
+  StabilityVerdict v;
+  const Range r = p.moving();
+  double fastest2 = -1.0;
+  for (std::size_t i = r.begin; i < r.end; ++i) {
+    const double s2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
+    if (s2 > fastest2) {
+      fastest2 = s2;
+      v.particle = i;
+    }
+  }
+  v.value = std::sqrt(std::max(fastest2, 0.0));
+  v.limit = limit_speed;
+  if (v.value > limit_speed) {
+    v.ok = false;
+    v.criterion = fmt::format("speed {:.4g} m/s above the limit {:.4g} m/s", v.value, limit_speed);
+  }
+  return v;
+}
+
+StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
+                              double tolerance) {
+  StabilityVerdict v;
+  const double scale = std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy)});
+  v.value = d.kinetic_energy + d.strain_energy - d.external_work - initial_energy;
+  v.limit = tolerance * scale;
+  if (scale > 0.0 && std::abs(v.value) > v.limit) {
+    v.ok = false;
+    v.criterion = fmt::format(
+        "energy balance: KE + PE - W - E0 = {:.4g} J, more than {:g} of max(peak W, E0) = "
+        "{:.4g} J",
+        v.value, tolerance, scale);
+  }
+  return v;
+}
+
+double dilatational_wave_speed(const std::vector<Material>& materials) {
+  double c = 0.0;
+  for (const Material& m : materials)
+    c = std::max(c, std::sqrt((m.lambda() + 2.0 * m.mu()) / m.density));
+  return c;
+}
+
+}  // namespace mpsolid

@@ -1,0 +1,37 @@
+#pragma once
+// Blow-up diagnosis: cheap checks of the current state, each naming the
+// particle where it fails. Run every `stability.check_interval` steps.
+#include <cstdint>
+#include <string>
+
+#include <vector>
+
+#include "src/core/diagnostics.hpp"
+#include "src/core/material.hpp"
+
+namespace mpsolid {
+
+struct StabilityVerdict {
+  bool ok = true;
+  std::string criterion;     // which check failed, in words
+  std::size_t particle = 0;  // storage index of the particle where it failed
+  std::size_t neighbor = 0;  // its bond partner, for a per-bond criterion
+  bool has_neighbor = false;
+  double value = 0, limit = 0;
+};
+
+// First non-finite position, velocity, rotation or angular velocity.
+StabilityVerdict check_finite(const ParticleStore& p);
+
+// The fastest moving particle against the limit speed.
+StabilityVerdict check_speed(const ParticleStore& p, double limit_speed);
+
+// |KE + PE - W - E0| against tolerance * max(peak W, E0); the peak external
+// work so far, not the current W, which falls when the body pushes back.
+StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
+                              double tolerance);
+
+// Largest dilatational wave speed sqrt((lambda + 2 mu) / rho) of the case's materials.
+double dilatational_wave_speed(const std::vector<Material>& materials);
+
+}  // namespace mpsolid

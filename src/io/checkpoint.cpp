@@ -1,0 +1,275 @@
+#include "src/io/checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <set>
+
+#include "build_info.hpp"
+#include "src/io/atomic_file.hpp"
+#include "src/io/file_snapshot.hpp"
+#include "src/io/hdf5_file.hpp"
+
+namespace mpsolid {
+
+namespace {
+constexpr const char* kFormat = "mpsolid checkpoint";
+constexpr std::int64_t kFormatVersion = 2;  // 2: peak_work
+
+// FNV-1a over everything stored: a damaged byte anywhere is found on reading.
+class Hasher {
+ public:
+  void bytes(const void* data, std::size_t n) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < n; ++k) h_ = (h_ ^ c[k]) * 1099511628211ull;
+  }
+  template <class T>
+  void value(T v) {
+    bytes(&v, sizeof v);
+  }
+  void text(const std::string& s) {
+    value<std::uint64_t>(s.size());
+    bytes(s.data(), s.size());
+  }
+  std::uint64_t get() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 1469598103934665603ull;
+};
+
+std::uint64_t content_hash(const Checkpoint& c) {
+  Hasher h;
+  h.value(kFormatVersion);
+  h.value(c.step);
+  h.value(c.peak_work);
+  h.text(c.case_toml);
+  h.value(c.bond_hash);
+  h.value(c.run_id);
+  h.value(c.frames);
+  h.value(c.history_bytes);
+  h.text(c.written_by);
+  for (const auto& s : c.segments) h.text(s);
+  for (const auto& [name, values] : c.particle_arrays) {
+    h.text(name);
+    h.bytes(values.data(), values.size() * sizeof(double));
+  }
+  for (const auto& b : c.rigid_bodies) {
+    h.text(b.name);
+    for (double v : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) h.value(v);
+  }
+  for (const auto& l : c.loads) {
+    h.text(l.name);
+    h.value(static_cast<std::int8_t>(l.active));
+    h.value(l.cx_on);
+    h.value(l.cy_on);
+  }
+  return h.get();
+}
+
+std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
+  std::vector<std::string> names;
+  for (const auto& a : arrays) names.push_back(a.name);
+  return names;
+}
+}  // namespace
+
+std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
+  std::vector<NamedArray> arrays;
+  for (const StateArray& a : kStateArrays) arrays.push_back({a.name, &(p.*a.member)});
+  return arrays;
+}
+
+Checkpoint capture_state(Simulation& sim) {
+  Checkpoint c;
+  c.step = sim.step();
+  c.peak_work = sim.state().peak_work;
+  ParticleStore& p = sim.particles();
+  const std::vector<std::size_t> order = p.storage_of_id();
+  for (const NamedArray& a : particle_state_arrays(p)) {
+    std::vector<double> by_id(p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) by_id[k] = (*a.values)[order[k]];
+    c.particle_arrays.emplace_back(a.name, std::move(by_id));
+  }
+  for (const RigidBody& b : sim.state().rigid_bodies)
+    c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
+  for (const StepLoad& l : sim.state().loads)
+    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on});
+  return c;
+}
+
+void restore_state(Simulation& sim, const Checkpoint& c, const std::string& source) {
+  ParticleStore& p = sim.particles();
+  SolverState& s = sim.state();
+  auto refuse = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: the checkpoint does not fit this case: {}", source, why));
+  };
+  const std::vector<NamedArray> arrays = particle_state_arrays(p);
+  std::vector<std::string> stored;
+  for (const auto& [name, values] : c.particle_arrays) stored.push_back(name);
+  if (stored != names_of(arrays))
+    refuse(fmt::format("it holds the particle arrays [{}], this build needs [{}]",
+                       fmt::join(stored, ", "), fmt::join(names_of(arrays), ", ")));
+  for (const auto& [name, values] : c.particle_arrays)
+    if (values.size() != p.size())
+      refuse(fmt::format("it has {} particles, the case has {}", values.size(), p.size()));
+  const std::uint64_t hash = s.bonds.hash();
+  if (hash != c.bond_hash)
+    refuse(fmt::format(
+        "the bond table differs (hash {:016x} in the checkpoint, {:016x} here): it was written by "
+        "another build ({}) or for another lattice; this build is {} {}",
+        c.bond_hash, hash, c.written_by, build_info::version, build_info::git_commit));
+  if (c.rigid_bodies.size() != s.rigid_bodies.size())
+    refuse(fmt::format("it has {} rigid bodies, the case has {}", c.rigid_bodies.size(),
+                       s.rigid_bodies.size()));
+  for (std::size_t b = 0; b < c.rigid_bodies.size(); ++b)
+    if (c.rigid_bodies[b].name != s.rigid_bodies[b].name)
+      refuse(fmt::format("rigid body '{}' in the checkpoint, '{}' in the case",
+                         c.rigid_bodies[b].name, s.rigid_bodies[b].name));
+  if (c.loads.size() != s.loads.size())
+    refuse(fmt::format("it has {} loads, the case has {}", c.loads.size(), s.loads.size()));
+  for (std::size_t l = 0; l < c.loads.size(); ++l)
+    if (c.loads[l].name != s.loads[l].name)
+      refuse(fmt::format("load '{}' in the checkpoint, '{}' in the case", c.loads[l].name,
+                         s.loads[l].name));
+
+  const std::vector<std::size_t> order = p.storage_of_id();
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    const std::vector<double>& by_id = c.particle_arrays[a].second;
+    std::vector<double>& values = *arrays[a].values;
+    for (std::size_t k = 0; k < p.size(); ++k) values[order[k]] = by_id[k];
+  }
+  for (std::size_t b = 0; b < c.rigid_bodies.size(); ++b) {
+    const RigidBodyState& from = c.rigid_bodies[b];
+    RigidBody& to = s.rigid_bodies[b];
+    to.xg = from.xg;
+    to.yg = from.yg;
+    to.angle = from.angle;
+    to.vx = from.vx;
+    to.vy = from.vy;
+    to.omega = from.omega;
+  }
+  for (std::size_t l = 0; l < c.loads.size(); ++l) {
+    s.loads[l].active = c.loads[l].active;
+    s.loads[l].cx_on = c.loads[l].cx_on;
+    s.loads[l].cy_on = c.loads[l].cy_on;
+  }
+  s.step = c.step;
+  s.peak_work = c.peak_work;
+}
+
+std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
+  const std::filesystem::path staged = staging_path(path);
+  {
+    h5::File file = h5::File::create(staged);
+    file.write_string("format", kFormat);
+    file.set_attribute<std::int64_t>("format_version", kFormatVersion);
+    file.set_attribute<std::int64_t>("step", c.step);
+    file.set_attribute<double>("peak_work", c.peak_work);
+    file.set_attribute<std::uint64_t>("bond_hash", c.bond_hash);
+    file.set_attribute<std::uint64_t>("run_id", c.run_id);
+    file.set_attribute<std::int64_t>("frames", c.frames);
+    file.set_attribute<std::uint64_t>("history_bytes", c.history_bytes);
+    file.set_attribute<std::int64_t>(
+        "particle_count", c.particle_arrays.empty()
+                              ? 0
+                              : static_cast<std::int64_t>(c.particle_arrays.front().second.size()));
+    file.set_attribute<std::uint64_t>("content_hash", content_hash(c));
+    file.write_string("case", c.case_toml);
+    file.write_string("written_by", c.written_by);
+    file.write_strings("segments", c.segments);
+
+    const h5::Group particles = file.create_group("particles");
+    std::vector<std::string> order;
+    for (const auto& [name, values] : c.particle_arrays) {
+      particles.write(name, values);
+      order.push_back(name);
+    }
+    particles.write_strings("_order", order);
+
+    const h5::Group bodies = file.create_group("rigid_bodies");
+    std::vector<std::string> body_names;
+    std::vector<double> pose;
+    for (const auto& b : c.rigid_bodies) {
+      body_names.push_back(b.name);
+      pose.insert(pose.end(), {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
+    }
+    bodies.write_strings("names", body_names);
+    bodies.write("state", pose, 6);
+
+    const h5::Group loads = file.create_group("loads");
+    std::vector<std::string> load_names;
+    std::vector<std::int8_t> active;
+    std::vector<double> centroid;
+    for (const auto& l : c.loads) {
+      load_names.push_back(l.name);
+      active.push_back(l.active ? 1 : 0);
+      centroid.insert(centroid.end(), {l.cx_on, l.cy_on});
+    }
+    loads.write_strings("names", load_names);
+    loads.write("active", active);
+    loads.write("centroid_on", centroid, 2);
+    file.close();
+  }
+  const std::uintmax_t bytes = std::filesystem::file_size(staged);
+  publish_staged_file(path);  // fsync, rename
+  sync_path(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path());
+  return bytes;
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path))
+    throw InputError(
+        fmt::format("{}: no checkpoint (is this the output folder of a run?)", path.string()));
+  Checkpoint c;
+  std::uint64_t stored_hash = 0;
+  try {
+    const h5::File file = h5::File::open(path, false);
+    if (!file.has("format") || file.read_string("format") != kFormat)
+      throw h5::Error("it is not an mpsolid checkpoint");
+    const auto version = file.attribute<std::int64_t>("format_version");
+    if (version != kFormatVersion)
+      throw h5::Error(fmt::format("checkpoint format version {}, this build reads version {}",
+                                  version, kFormatVersion));
+    c.step = file.attribute<std::int64_t>("step");
+    c.peak_work = file.attribute<double>("peak_work");
+    c.bond_hash = file.attribute<std::uint64_t>("bond_hash");
+    c.run_id = file.attribute<std::uint64_t>("run_id");
+    c.frames = file.attribute<std::int64_t>("frames");
+    c.history_bytes = file.attribute<std::uint64_t>("history_bytes");
+    const auto n = file.attribute<std::int64_t>("particle_count");
+    stored_hash = file.attribute<std::uint64_t>("content_hash");
+    if (c.step < 0 || c.frames < 0 || n < 0) throw h5::Error("negative step, frames or particles");
+    c.case_toml = file.read_string("case");
+    c.written_by = file.read_string("written_by");
+    c.segments = file.read_strings("segments");
+
+    const h5::Group particles = file.open_group("particles");
+    for (const std::string& name : particles.read_strings("_order"))
+      c.particle_arrays.emplace_back(name,
+                                     particles.read<double>(name, static_cast<std::size_t>(n)));
+
+    const h5::Group bodies = file.open_group("rigid_bodies");
+    const std::vector<std::string> body_names = bodies.read_strings("names");
+    const std::vector<double> pose = bodies.read<double>("state", body_names.size(), 6);
+    for (std::size_t b = 0; b < body_names.size(); ++b) {
+      const double* v = pose.data() + 6 * b;
+      c.rigid_bodies.push_back({body_names[b], v[0], v[1], v[2], v[3], v[4], v[5]});
+    }
+
+    const h5::Group loads = file.open_group("loads");
+    const std::vector<std::string> load_names = loads.read_strings("names");
+    const std::vector<std::int8_t> active = loads.read<std::int8_t>("active", load_names.size());
+    const std::vector<double> centroid = loads.read<double>("centroid_on", load_names.size(), 2);
+    for (std::size_t l = 0; l < load_names.size(); ++l)
+      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1]});
+  } catch (const h5::Error& e) {
+    throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));
+  }
+  if (content_hash(c) != stored_hash)
+    throw InputError(
+        fmt::format("{}: damaged checkpoint: its contents do not match the hash stored with them",
+                    path.string()));
+  return c;
+}
+
+}  // namespace mpsolid

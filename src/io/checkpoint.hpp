@@ -1,0 +1,70 @@
+#pragma once
+// checkpoint.h5: everything a run needs to go on to the same bits: the step,
+// the evolving state in full precision (per-particle arrays in id order,
+// rigid-body poses and velocities, each load's switch-on record), the
+// resolved case, the bond table's hash, how much of history.csv and
+// frames.h5 belongs to that step, and the run.json segments so far.
+// Everything else (masses, bonds, ranges, work arrays) is rebuilt by set-up
+// from the stored case; the state then overwrites the set-up state.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "src/solver/simulation.hpp"
+
+namespace mpsolid {
+
+// A per-particle state array saved and restored by name.
+struct NamedArray {
+  std::string name;
+  std::vector<double>* values;
+};
+
+// kStateArrays of `p`, by name (see particle_store.hpp).
+std::vector<NamedArray> particle_state_arrays(ParticleStore& p);
+
+struct RigidBodyState {
+  std::string name;
+  double xg = 0, yg = 0, angle = 0, vx = 0, vy = 0, omega = 0;
+};
+
+struct LoadState {
+  std::string name;
+  bool active = false;
+  double cx_on = 0, cy_on = 0;
+};
+
+struct Checkpoint {
+  std::int64_t step = 0;
+  double peak_work = 0;               // SolverState::peak_work (the energy check's scale)
+  std::string case_toml;              // the resolved case (CaseSpec::resolved_toml)
+  std::uint64_t bond_hash = 0;        // BondTable::hash() of the run's bond table
+  std::uint64_t run_id = 0;           // ties the checkpoint to its history.csv and frames.h5
+  std::int64_t frames = 0;            // frames in frames.h5 and rows in history.csv at `step`
+  std::uint64_t history_bytes = 0;    // length of history.csv (header included) at `step`
+  std::string written_by;             // program version and git commit
+  std::vector<std::string> segments;  // run.json segment objects so far, oldest first
+  std::vector<std::pair<std::string, std::vector<double>>> particle_arrays;  // id order
+  std::vector<RigidBodyState> rigid_bodies;
+  std::vector<LoadState> loads;
+};
+
+// The evolving state of `sim` and its step (the other fields are left empty).
+Checkpoint capture_state(Simulation& sim);
+
+// Overwrites the state of a freshly set-up `sim` with the checkpoint's.
+// Throws InputError, naming `source`, if the checkpoint does not fit: other
+// particle count, state arrays, bodies or loads, or another bond table.
+void restore_state(Simulation& sim, const Checkpoint& c, const std::string& source);
+
+// Writes `path` atomically: `path`.tmp, fsync, rename, fsync of the folder.
+// Returns the bytes written.
+std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c);
+
+// Reads and verifies a checkpoint (format, shapes, content hash). Throws
+// InputError naming the file if it is missing, damaged or not a checkpoint.
+Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+}  // namespace mpsolid

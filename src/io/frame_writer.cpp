@@ -1,0 +1,184 @@
+#include "src/io/frame_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <string>
+#include <vector>
+
+#include "src/io/atomic_file.hpp"
+#include "src/io/file_snapshot.hpp"
+#include "src/io/hdf5_file.hpp"
+
+namespace mpsolid {
+
+const std::vector<XdmfField>& frame_fields() {
+  static const std::vector<XdmfField> fields = {
+      {"id", "Int", 4, 1},
+      {"kind", "Char", 1, 1},
+      {"body", "Int", 4, 1},
+      {"velocity", "Float", 8, 2},
+      {"rotation", "Float", 8, 1},
+      {"angular_velocity", "Float", 8, 1},
+      {"volumetric_strain", "Float", 8, 1},
+      {"pressure", "Float", 8, 1},
+  };
+  return fields;
+}
+
+struct FrameWriter::File {
+  h5::File file;
+  h5::Group frames;
+  std::vector<std::size_t> storage_of_id;
+};
+
+namespace {
+std::string frame_group(int index) {
+  return fmt::format("{:06d}", index);
+}
+
+std::filesystem::path sidecar_path(const std::filesystem::path& path) {
+  return path.parent_path() / (path.stem().string() + ".xdmf");
+}
+}  // namespace
+
+FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+                         std::uint64_t run_id)
+    : path_(path),
+      file_(std::make_unique<File>()),
+      compression_(compression),
+      particles_(sim.particles().size()) {
+  file_->file = h5::File::create(staging_path(path));
+  file_->frames = file_->file.create_group("frames");
+  file_->storage_of_id = sim.particles().storage_of_id();
+  std::vector<std::string> bodies;
+  for (const auto& b : sim.spec().bodies) bodies.push_back(b.name);
+  file_->file.write_strings("body_names", bodies);
+  file_->file.write_strings("kind_names", {"wall", "elastic", "rigid"});
+  file_->file.set_attribute<double>("l0", sim.spec().l0);
+  file_->file.set_attribute<double>("depth", sim.spec().depth);
+  file_->file.set_attribute<std::int64_t>("particles", static_cast<std::int64_t>(particles_));
+  file_->file.set_attribute<std::uint64_t>("run_id", run_id);
+}
+
+FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+                         std::uint64_t run_id, int keep_frames)
+    : path_(path),
+      file_(std::make_unique<File>()),
+      compression_(compression),
+      particles_(sim.particles().size()) {
+  const std::filesystem::path staged = staging_path(path);
+  if (!std::filesystem::exists(path))
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's frames cannot be continued", path.string()));
+  copy_file_atomically(path, staged);
+  try {
+    file_->file = h5::File::open(staged, true);
+    if (file_->file.attribute<std::uint64_t>("run_id") != run_id)
+      throw InputError(fmt::format(
+          "{} was written by another run than the checkpoint (a checkpoint from a different run "
+          "or case?)",
+          path.string()));
+    if (file_->file.attribute<std::int64_t>("particles") != static_cast<std::int64_t>(particles_))
+      throw InputError(fmt::format("{} has another particle count than the case", path.string()));
+    file_->frames = file_->file.open_group("frames");
+    for (const std::string& name : file_->frames.children()) {
+      const int index = std::stoi(name);
+      if (index >= keep_frames) file_->frames.remove(name);
+    }
+    for (int k = 0; k < keep_frames; ++k) {
+      if (!file_->frames.has(frame_group(k)))
+        throw InputError(fmt::format("{} has {} frames, the checkpoint records {}", path.string(),
+                                     k, keep_frames));
+      const h5::Group group = file_->frames.open_group(frame_group(k));
+      frames_.push_back({"/frames/" + frame_group(k), group.attribute<double>("time")});
+    }
+    file_->file.flush();
+  } catch (const h5::Error& e) {
+    throw InputError(fmt::format("{}: cannot continue it: {}", path.string(), e.what()));
+  }
+  file_->storage_of_id = sim.particles().storage_of_id();
+  first_frame_ = keep_frames;
+  start_bytes_ = file_->file.size();
+}
+
+FrameWriter::~FrameWriter() = default;
+
+std::uint64_t frames_run_id(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path))
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's frames cannot be continued", path.string()));
+  try {
+    return h5::File::open(path, false).attribute<std::uint64_t>("run_id");
+  } catch (const h5::Error& e) {
+    throw InputError(fmt::format("{}: cannot read it: {}", path.string(), e.what()));
+  }
+}
+
+void FrameWriter::write(const Simulation& sim) {
+  const ParticleStore& p = sim.particles();
+  const auto& order = file_->storage_of_id;
+  const int index = frames_total();
+  const h5::Group group = file_->frames.create_group(frame_group(index));
+  group.set_attribute<std::int64_t>("step", sim.step());
+  group.set_attribute<double>("time", sim.time());
+
+  const std::size_t n = p.size();
+  auto gather = [&](const std::vector<double>& field) {
+    std::vector<double> out(n);
+    for (std::size_t k = 0; k < n; ++k) out[k] = field[order[k]];
+    return out;
+  };
+  auto gather_pair = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> out(2 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      out[2 * k] = a[order[k]];
+      out[2 * k + 1] = b[order[k]];
+    }
+    return out;
+  };
+  std::vector<std::int32_t> id(n), body(n);
+  std::vector<std::int8_t> kind(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    id[k] = p.id[order[k]];
+    body[k] = p.body[order[k]];
+    kind[k] = static_cast<std::int8_t>(p.kind[order[k]]);
+  }
+  const int level = compression_;
+  group.write("id", id, 1, level);
+  group.write("kind", kind, 1, level);
+  group.write("body", body, 1, level);
+  group.write("position", gather_pair(p.x, p.y), 2, level);
+  group.write("velocity", gather_pair(p.vx, p.vy), 2, level);
+  group.write("rotation", gather(p.theta), 1, level);
+  group.write("angular_velocity", gather(p.omega), 1, level);
+  group.write("volumetric_strain", gather(p.strain), 1, level);
+  group.write("pressure", gather(p.pressure), 1, level);
+  file_->file.flush();  // a crashed run keeps its frames in the staging file
+  frames_.push_back({"/frames/" + frame_group(index), sim.time()});
+}
+
+std::uintmax_t FrameWriter::bytes_written() const {
+  if (!file_->file.is_open()) return published_bytes_ - start_bytes_;
+  return file_->file.size() - start_bytes_;
+}
+
+void FrameWriter::write_sidecar() const {
+  write_file_atomically(sidecar_path(path_), xdmf_document(path_.filename().string(), particles_,
+                                                           frames_, frame_fields()));
+}
+
+void FrameWriter::snapshot() {
+  file_->file.flush();
+  copy_file_atomically(staging_path(path_), path_);
+  write_sidecar();
+}
+
+void FrameWriter::publish() {
+  published_bytes_ = file_->file.size();
+  file_->frames = h5::Group();
+  file_->file.close();
+  publish_staged_file(path_);
+  write_sidecar();
+}
+
+}  // namespace mpsolid

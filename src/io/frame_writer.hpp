@@ -1,0 +1,57 @@
+#pragma once
+// frames.h5: one group per frame (/frames/000000, ...), every particle field in
+// id order, optionally deflate-compressed; and its XDMF sidecar frames.xdmf.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "src/io/xdmf_writer.hpp"
+#include "src/solver/simulation.hpp"
+
+namespace mpsolid {
+
+class FrameWriter {
+ public:
+  // A new file, written to a staging file; publish() renames it to `path`.
+  // `compression`: deflate level 0 (off) to 9. `run_id` ties it to its checkpoints.
+  FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+              std::uint64_t run_id);
+  // A resumed run: continues the published file at `path` from its first
+  // `keep_frames` frames (later ones are dropped). Throws InputError if that
+  // file is missing, belongs to another run or has fewer frames.
+  FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+              std::uint64_t run_id, int keep_frames);
+  ~FrameWriter();
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
+
+  // The current state (fields must be refreshed) as the next frame.
+  void write(const Simulation& sim);
+  // Publishes a copy of the file as it is now (and the sidecar); writing goes on.
+  void snapshot();
+  // Closes the file and renames it to `path`; writes the sidecar.
+  void publish();
+  int frames_written() const { return frames_total() - first_frame_; }   // by this writer
+  int frames_total() const { return static_cast<int>(frames_.size()); }  // in the file
+  std::uintmax_t bytes_written() const;                                  // by this writer
+
+ private:
+  struct File;
+  void write_sidecar() const;
+  std::filesystem::path path_;
+  std::unique_ptr<File> file_;
+  std::vector<XdmfFrame> frames_;
+  int first_frame_ = 0;
+  int compression_ = 0;
+  std::size_t particles_ = 0;
+  std::uintmax_t start_bytes_ = 0, published_bytes_ = 0;
+};
+
+// The datasets of a frame besides `position`, as the XDMF sidecar lists them.
+const std::vector<XdmfField>& frame_fields();
+
+// The run id stored in a frames file. Throws InputError if it cannot be read.
+std::uint64_t frames_run_id(const std::filesystem::path& path);
+
+}  // namespace mpsolid

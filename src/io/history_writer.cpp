@@ -1,0 +1,127 @@
+#include "src/io/history_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "src/io/atomic_file.hpp"
+#include "src/io/file_snapshot.hpp"
+
+namespace mpsolid {
+
+std::vector<std::string> history_columns(const Simulation& sim) {
+  std::vector<std::string> cols = {
+      "t",          "kinetic_energy", "strain_energy",    "external_work",
+      "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
+  for (const RigidBody& b : sim.state().rigid_bodies)
+    for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
+  for (const BodySpec& b : sim.spec().bodies)
+    if (b.kind == Kind::elastic)
+      for (const char* suffix : {".xmin", ".xmax", ".ymin", ".ymax"})
+        cols.push_back(b.name + suffix);
+  for (const ProbeSpec& probe : sim.spec().probes)
+    for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
+  return cols;
+}
+
+std::vector<double> history_row(const Simulation& sim, const Diagnostics& d) {
+  std::vector<double> row = {sim.time(),   d.kinetic_energy, d.strain_energy,    d.external_work,
+                             d.momentum_x, d.momentum_y,     d.angular_momentum, d.max_speed};
+  for (const RigidBody& b : sim.state().rigid_bodies) {
+    row.push_back(b.xg - b.xg0);
+    row.push_back(b.yg - b.yg0);
+    row.push_back(b.angle);
+  }
+  const ParticleStore& p = sim.particles();
+  for (std::size_t b = 0; b < sim.spec().bodies.size(); ++b) {
+    if (sim.spec().bodies[b].kind != Kind::elastic) continue;
+    const Range r = sim.body_ranges()[b];
+    const auto [xmin, xmax] = std::minmax_element(p.x.begin() + r.begin, p.x.begin() + r.end);
+    const auto [ymin, ymax] = std::minmax_element(p.y.begin() + r.begin, p.y.begin() + r.end);
+    row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
+  }
+  for (const std::size_t i : sim.probe_particles()) row.insert(row.end(), {p.x[i], p.y[i]});
+  return row;
+}
+
+namespace {
+std::string header_line(const Simulation& sim) {
+  std::string header;
+  for (const auto& c : history_columns(sim)) header += (header.empty() ? "" : ",") + c;
+  return header + '\n';
+}
+}  // namespace
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim)
+    : path_(path) {
+  file_ = std::fopen(staging_path(path).c_str(), "w");
+  if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
+  const std::string header = header_line(sim);
+  bytes_ += std::fwrite(header.data(), 1, header.size(), file_);
+  file_bytes_ = bytes_;
+}
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim,
+                             std::uintmax_t keep_bytes)
+    : path_(path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec)
+    throw InputError(
+        fmt::format("{}: missing; the checkpoint's history cannot be continued", path.string()));
+  if (size < keep_bytes)
+    throw InputError(
+        fmt::format("{} has {} bytes, the checkpoint records {}", path.string(), size, keep_bytes));
+  copy_file_atomically(path, staging_path(path));
+  std::filesystem::resize_file(staging_path(path), keep_bytes);
+  file_ = std::fopen(staging_path(path).c_str(), "r+");
+  if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
+  const std::string header = header_line(sim);
+  std::string start(header.size(), '\0');
+  const std::size_t got = std::fread(start.data(), 1, start.size(), file_);
+  char last = '\0';
+  if (keep_bytes > 0 && std::fseek(file_, static_cast<long>(keep_bytes) - 1, SEEK_SET) == 0)
+    last = static_cast<char>(std::fgetc(file_));
+  if (got != header.size() || start != header || last != '\n')
+    throw InputError(fmt::format(
+        "{} does not hold this case's history up to the checkpoint (other columns, or cut "
+        "inside a row)",
+        path.string()));
+  std::fseek(file_, 0, SEEK_END);
+  file_bytes_ = keep_bytes;
+}
+
+HistoryWriter::~HistoryWriter() {
+  if (file_) std::fclose(file_);
+}
+
+void HistoryWriter::write(const Simulation& sim, const Diagnostics& d) {
+  std::string line;
+  for (double v : history_row(sim, d)) {
+    if (!line.empty()) line += ',';
+    line += fmt::format("{:.17g}", v);
+  }
+  line += '\n';
+  const std::size_t written = std::fwrite(line.data(), 1, line.size(), file_);
+  bytes_ += written;
+  file_bytes_ += written;
+  // A crashed run keeps every frame written so far; a short write is an error.
+  if (std::fflush(file_) != 0 || written != line.size())
+    throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
+}
+
+void HistoryWriter::snapshot() {
+  if (std::fflush(file_) != 0)
+    throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
+  copy_file_atomically(staging_path(path_), path_);
+}
+
+void HistoryWriter::publish() {
+  std::fclose(file_);
+  file_ = nullptr;
+  publish_staged_file(path_);
+}
+
+}  // namespace mpsolid

@@ -1,0 +1,67 @@
+#pragma once
+// The files of a run folder and how they stay consistent with checkpoint.h5.
+//
+// history.csv and frames.h5 are written to staging files (NAME.tmp), flushed
+// at every frame. A checkpoint first publishes copies of both under their
+// names (and frames.xdmf), then replaces checkpoint.h5 (temporary file,
+// fsync, rename), which records how many frames and history bytes belong to
+// its step. So the published files always hold at least what the checkpoint
+// records, whatever moment a process is killed at, and a resumed run
+// continues them from exactly that point: no frame lost or written twice.
+// A fresh run first removes an old checkpoint.h5, so a checkpoint never
+// refers to another run's files; a random run id written into both checks it.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "src/io/checkpoint.hpp"
+#include "src/io/frame_writer.hpp"
+#include "src/io/history_writer.hpp"
+#include "src/io/run_report.hpp"
+
+namespace mpsolid {
+
+class RunOutputs {
+ public:
+  // A fresh run in `dir` (created if needed).
+  RunOutputs(const std::filesystem::path& dir, const Simulation& sim);
+  // A resumed run: `sim` holds the restored state of `from`.
+  RunOutputs(const std::filesystem::path& dir, const Simulation& sim, const Checkpoint& from);
+
+  // A history.csv row (once per step), and a frame with its row.
+  void write_history(const Simulation& sim, const Diagnostics& d);
+  void write_frame(const Simulation& sim, const Diagnostics& d);
+  // Publishes copies of the outputs (unless published), then writes
+  // checkpoint.h5 with the run.json segments so far, this one described by
+  // `facts` (its figures are brought up to date here).
+  void checkpoint(Simulation& sim, RunFacts facts);
+  // Renames the staging files to their names (end of the run).
+  void publish();
+  // Brings the output figures of `facts` up to date.
+  void fill(RunFacts& facts) const;
+
+  const std::vector<std::string>& previous_segments() const { return previous_segments_; }
+  std::int64_t last_checkpoint_step() const { return last_checkpoint_step_; }
+  std::int64_t last_frame_step() const { return last_frame_step_; }
+  static std::filesystem::path checkpoint_path(const std::filesystem::path& dir) {
+    return dir / "checkpoint.h5";
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::uint64_t run_id_ = 0;
+  std::uint64_t bond_hash_ = 0;
+  HistoryWriter history_;
+  FrameWriter frames_;
+  std::vector<std::string> previous_segments_;
+  bool published_ = false;
+  std::int64_t last_checkpoint_step_ = -1;
+  std::int64_t last_frame_step_ = -1;
+  std::int64_t last_history_step_ = -1;
+  int checkpoints_ = 0;
+  std::uintmax_t checkpoint_bytes_ = 0;
+  double checkpoint_seconds_ = 0;
+};
+
+}  // namespace mpsolid

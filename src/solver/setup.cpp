@@ -1,0 +1,131 @@
+#include "src/solver/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "src/core/geometry.hpp"
+
+namespace mpsolid {
+
+namespace {
+struct NewParticle {
+  double x, y;
+  std::int32_t id, body;
+};
+
+// Storage rank of a body: walls first, then elastic bodies, then rigid
+// bodies, each group in case order.
+int group_of(Kind kind) {
+  return kind == Kind::wall ? 0 : kind == Kind::elastic ? 1 : 2;
+}
+}  // namespace
+
+SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
+  auto timer = timers.time(Phase::setup);
+  SetupResult result;
+  SolverState& s = result.state;
+
+  // Ids in case order (bodies by name, sites row by row).
+  std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
+  std::int32_t next_id = 0;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    for (const Site& site : fill_rectangle(spec.bodies[b].x, spec.bodies[b].y, spec.l0))
+      by_body[b].push_back({site.x, site.y, next_id++, static_cast<std::int32_t>(b)});
+
+  std::vector<std::size_t> order(spec.bodies.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return group_of(spec.bodies[a].kind) < group_of(spec.bodies[b].kind);
+  });
+
+  ParticleStore& p = s.particles;
+  p.resize(static_cast<std::size_t>(next_id));
+  result.body_ranges.resize(spec.bodies.size());
+  std::size_t next = 0;
+  for (std::size_t b : order) {
+    const BodySpec& body = spec.bodies[b];
+    const Material& mat = spec.materials[static_cast<std::size_t>(body.material)];
+    const double mass = mat.density * spec.l0 * spec.l0 * spec.depth;
+    const double inertia = mass * spec.l0 * spec.l0 / 6.0;  // square particle
+    result.body_ranges[b] = {next, next + by_body[b].size()};
+    for (const NewParticle& np : by_body[b]) {
+      p.x[next] = p.x0[next] = np.x;
+      p.y[next] = p.y0[next] = np.y;
+      p.id[next] = np.id;
+      p.body[next] = np.body;
+      p.material[next] = body.material;
+      p.kind[next] = body.kind;
+      p.inv_mass[next] = 1.0 / mass;
+      p.inv_inertia[next] = 1.0 / inertia;
+      p.lambda[next] = mat.lambda();
+      p.mu[next] = mat.mu();
+      ++next;
+    }
+  }
+  const auto kind_range = [&](Kind kind) {
+    Range r{p.size(), p.size()};
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.kind[i] == kind) {
+        r.begin = std::min(r.begin, i);
+        r.end = i + 1;
+      }
+    return r;
+  };
+  p.walls = kind_range(Kind::wall);
+  p.elastic = kind_range(Kind::elastic);
+  p.rigid = kind_range(Kind::rigid);
+  // Empty groups sit at the boundary of their neighbours.
+  if (p.walls.empty()) p.walls = {0, 0};
+  if (p.elastic.empty()) p.elastic = {p.walls.end, p.walls.end};
+  if (p.rigid.empty()) p.rigid = {p.elastic.end, p.elastic.end};
+
+  {
+    auto t = timers.time(Phase::neighbors);
+    s.bonds = build_bonds(p, kernel_constants(spec.l0, spec.depth));
+  }
+
+  for (std::size_t b : order)
+    if (spec.bodies[b].kind == Kind::rigid)
+      s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, result.body_ranges[b]));
+
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].hold != Hold::none)
+      s.holds.push_back(
+          {result.body_ranges[b], spec.bodies[b].hold == Hold::x, spec.bodies[b].hold == Hold::y});
+
+  // Probes: the nearest particle to the point, lowest id on a tie.
+  for (const ProbeSpec& probe : spec.probes) {
+    std::size_t best = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double dx = p.x0[i] - probe.at[0], dy = p.y0[i] - probe.at[1];
+      const double d2 = dx * dx + dy * dy;
+      if (d2 < best_d2 || (d2 == best_d2 && p.id[i] < p.id[best])) {
+        best = i;
+        best_d2 = d2;
+      }
+    }
+    result.probes.push_back(best);
+  }
+
+  for (const LoadSpec& l : spec.loads) {
+    StepLoad load;
+    load.name = l.name;
+    load.range = result.body_ranges[static_cast<std::size_t>(l.body)];
+    load.fx = l.force[0];
+    load.fy = l.force[1];
+    s.loads.push_back(load);
+  }
+  return result;
+}
+
+void schedule_loads(SolverState& s, const CaseSpec& spec) {
+  s.dt = spec.dt;
+  for (std::size_t k = 0; k < spec.loads.size(); ++k)
+    s.loads[k].first_step =
+        static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
+}
+
+}  // namespace mpsolid

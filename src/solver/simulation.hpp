@@ -1,0 +1,64 @@
+#pragma once
+// A case set up and ready to step: the solver state, the chosen model and the
+// phase timers. The run loop with outputs lives in run.hpp.
+#include <cstdint>
+
+#include "kernels/model_registry.hpp"
+#include "src/case/case_spec.hpp"
+#include "src/core/diagnostics.hpp"
+#include "src/core/stability.hpp"
+#include "src/solver/setup.hpp"
+#include "src/solver/stable_step.hpp"
+
+namespace mpsolid {
+
+class Simulation {
+ public:
+  explicit Simulation(const CaseSpec& spec);
+
+  // Advances `steps` time steps (no output).
+  void advance(std::int64_t steps);
+  // Recomputes the position-dependent fields (half angles, strain, pressure)
+  // for the current state, as outputs and diagnostics need.
+  void refresh_fields();
+  // Energies and momenta of the current state (calls refresh_fields).
+  Diagnostics diagnostics();
+  // The blow-up checks of the current state (calls refresh_fields): finite
+  // values, the model's integrity (inverted bond or collapsed J), speed
+  // against the dilatational wave speed, and the energy balance. The
+  // diagnostics it computed come back in `diagnostics_out`.
+  StabilityVerdict check_stability(Diagnostics* diagnostics_out = nullptr);
+  // Sum of KE and PE at set-up, the reference of the energy balance.
+  double initial_energy() const { return initial_energy_; }
+
+  double time() const { return static_cast<double>(state_.step) * state_.dt; }
+  std::int64_t step() const { return state_.step; }
+
+  const CaseSpec& spec() const { return spec_; }
+  SolverState& state() { return state_; }
+  const SolverState& state() const { return state_; }
+  const ParticleStore& particles() const { return state_.particles; }
+  ParticleStore& particles() { return state_.particles; }
+  const std::vector<Range>& body_ranges() const { return body_ranges_; }
+  // Storage index of each probe's particle (spec().probes order).
+  const std::vector<std::size_t>& probe_particles() const { return probes_; }
+  // The estimate behind time.dt = "auto" (zeros when dt was given).
+  const StableStepEstimate& stable_step() const { return stable_step_; }
+  PhaseTimers& timers() { return timers_; }
+  const PhaseTimers& timers() const { return timers_; }
+
+ private:
+  Diagnostics current_diagnostics();  // fields must be fresh
+
+  CaseSpec spec_;
+  PhaseTimers timers_;
+  SolverState state_;
+  std::vector<Range> body_ranges_;
+  std::vector<std::size_t> probes_;
+  AnyModel model_;
+  StableStepEstimate stable_step_;
+  double initial_energy_ = 0;
+  double limit_speed_ = 0;
+};
+
+}  // namespace mpsolid

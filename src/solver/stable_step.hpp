@@ -1,0 +1,137 @@
+#pragma once
+// The largest stable step of symplectic Euler for a bond model: dt < 2 /
+// omega_max, with omega_max^2 the largest eigenvalue of M^-1 K, K the
+// stiffness of the linearised system about the current state (translations
+// and, for models with rotation, particle spins; M holds masses and moments
+// of inertia).
+//
+// omega_max comes from power iteration on the mass-weighted stiffness
+// M^-1/2 K M^-1/2. Each product K v is a central difference of the model's
+// own strain and force passes, so every model is covered by the same code and
+// no hand-derived formula can drift from the kernels. Only elastic particles
+// move in the iteration: walls never move, and a rigid body is far heavier
+// than one particle, so its modes are slow.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "src/core/half_angles.hpp"
+#include "src/solver/step.hpp"
+
+namespace mpsolid {
+
+struct StableStepEstimate {
+  double omega_max = 0;  // rad/s
+  double dt_limit = 0;   // 2 / omega_max (s)
+  int iterations = 0;
+  bool converged = false;
+};
+
+namespace detail {
+// y = A u for the mass-weighted stiffness A about the state `base`; `work` is
+// a scratch copy of it.
+template <class Model>
+void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleStore& work,
+                             const BondTable& bonds, double l0, const std::vector<double>& u,
+                             std::vector<double>& y) {
+  constexpr bool rot = Model::uses_rotation;
+  constexpr std::size_t c = rot ? 3 : 2;
+  const Range r = base.elastic;
+  // Displacements d = M^-1/2 u, scaled so the largest moves l0 * 1e-7: small
+  // enough to stay linear, large enough to keep 8 digits of the difference.
+  double largest = 0;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    const std::size_t i = r.begin + k;
+    largest = std::max({largest, std::abs(u[c * k]) * std::sqrt(base.inv_mass[i]),
+                        std::abs(u[c * k + 1]) * std::sqrt(base.inv_mass[i])});
+    if (rot)
+      largest = std::max(largest, std::abs(u[c * k + 2]) * std::sqrt(base.inv_inertia[i]) * l0);
+  }
+  const double h = 1e-7 * l0 / largest;
+  std::vector<double> forces_plus(c * r.size());
+  for (const double sign : {1.0, -1.0}) {
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      const std::size_t i = r.begin + k;
+      work.x[i] = base.x[i] + sign * h * u[c * k] * std::sqrt(base.inv_mass[i]);
+      work.y[i] = base.y[i] + sign * h * u[c * k + 1] * std::sqrt(base.inv_mass[i]);
+      if (rot)
+        work.theta[i] = base.theta[i] + sign * h * u[c * k + 2] * std::sqrt(base.inv_inertia[i]);
+    }
+    if constexpr (rot) compute_half_angles(work, work.moving());
+    model.compute_strain(work, bonds, work.all());
+    model.compute_forces(work, bonds, work.moving());
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      const std::size_t i = r.begin + k;
+      const double f[3] = {work.fx[i], work.fy[i], rot ? work.torque[i] : 0.0};
+      for (std::size_t a = 0; a < c; ++a) {
+        if (sign > 0) {
+          forces_plus[c * k + a] = f[a];
+          continue;
+        }
+        const double scale = a < 2 ? std::sqrt(base.inv_mass[i]) : std::sqrt(base.inv_inertia[i]);
+        // K d = -dF/dd, so A u = -M^-1/2 (F(+h d) - F(-h d)) / (2 h).
+        y[c * k + a] = -scale * (forces_plus[c * k + a] - f[a]) / (2.0 * h);
+      }
+    }
+  }
+}
+
+inline double norm(const std::vector<double>& v) {
+  double s = 0;
+  for (const double x : v) s += x * x;
+  return std::sqrt(s);
+}
+}  // namespace detail
+
+// omega_max and 2 / omega_max for the state in `s` (usually the initial one).
+// Deterministic: a fixed start vector and serial vector sums, so the step is
+// the same at any thread count.
+template <class Model>
+StableStepEstimate estimate_stable_step(Model& model, const SolverState& s, double l0,
+                                        int max_iterations = 2000, double tolerance = 1e-3) {
+  constexpr std::size_t c = Model::uses_rotation ? 3 : 2;
+  const ParticleStore& base = s.particles;
+  const Range r = base.elastic;
+  StableStepEstimate out;
+  if (r.empty()) return out;
+  ParticleStore work = base;
+  // Start near the stiffest lattice mode (neighbours moving against each
+  // other), with a hashed component so no mode is missed by symmetry.
+  std::vector<double> u(c * r.size()), y(c * r.size());
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    const std::size_t i = r.begin + k;
+    const auto kx = static_cast<std::int64_t>(std::floor(base.x0[i] / l0));
+    const auto ky = static_cast<std::int64_t>(std::floor(base.y0[i] / l0));
+    const double sign = ((kx + ky) & 1) ? -1.0 : 1.0;
+    const auto hash = static_cast<std::uint32_t>(base.id[i]) * 2654435761u;
+    const double jitter = 0.1 * (static_cast<double>(hash >> 8) / 16777216.0 - 0.5);
+    u[c * k] = (sign + jitter) / std::sqrt(base.inv_mass[i]);
+    u[c * k + 1] = (((kx & 1) ? -sign : sign) - jitter) / std::sqrt(base.inv_mass[i]);
+    if (c == 3) u[c * k + 2] = (sign + jitter) / (l0 * std::sqrt(base.inv_inertia[i]));
+  }
+  // The top of a lattice's spectrum is dense, so the estimate creeps up: it
+  // counts as converged when it grew by less than `tolerance` (relative) over
+  // the last kWindow iterations.
+  constexpr int kWindow = 50;
+  std::vector<double> history;
+  for (int it = 1; it <= max_iterations; ++it) {
+    const double length = detail::norm(u);
+    for (double& x : u) x /= length;
+    detail::mass_weighted_stiffness(model, base, work, s.bonds, l0, u, y);
+    // |A u| with |u| = 1 rises to the largest |eigenvalue| from below.
+    const double estimate = detail::norm(y);
+    history.push_back(estimate);
+    out.iterations = it;
+    out.omega_max = std::sqrt(estimate);
+    u.swap(y);
+    if (it > kWindow && estimate - history[it - 1 - kWindow] <= tolerance * estimate) {
+      out.converged = true;
+      break;
+    }
+  }
+  out.dt_limit = out.omega_max > 0 ? 2.0 / out.omega_max : 0.0;
+  return out;
+}
+
+}  // namespace mpsolid
