@@ -14,7 +14,7 @@ void run_bond_build(benchmark::State& state, long l0_um, NeighborMethod method) 
   Simulation sim(rod(l0_um, "paper"));
   for (auto _ : state)
     benchmark::DoNotOptimize(
-        build_bonds(sim.particles(), sim.state().bonds.constants, method).entry_count());
+        build_bonds(sim.particles(), sim.state().bonds.geometry, method).entry_count());
   state.counters["particles"] = static_cast<double>(sim.particles().size());
 }
 

@@ -86,7 +86,7 @@ void run_neighbours(benchmark::State& state, long l0_um, int threads) {
     state.SetIterationTime(step_time);
   }
   const auto start = std::chrono::steady_clock::now();
-  benchmark::DoNotOptimize(build_bonds(sim.particles(), sim.state().bonds.constants).entry_count());
+  benchmark::DoNotOptimize(build_bonds(sim.particles(), sim.state().bonds.geometry).entry_count());
   const std::chrono::duration<double> build = std::chrono::steady_clock::now() - start;
   state.counters["neighbor_s_in_loop"] = sim.timers().seconds(Phase::neighbors) - before;
   state.counters["bond_build_in_steps"] = build.count() / step_time;

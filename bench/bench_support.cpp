@@ -4,14 +4,14 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "src/case/case_reader.hpp"
+#include "src/solver/case_loader.hpp"
 
 namespace mpsolid::bench {
 
 CaseSpec rod(long l0_um, const std::string& model, std::vector<std::string> overrides) {
   overrides.push_back("l0=" + std::to_string(static_cast<double>(l0_um) * 1e-6));
   overrides.push_back("model=" + model);
-  return read_case(std::string(MPSOLID_SOURCE_DIR) + "/cases/shock_rod.toml", overrides);
+  return load_case(std::string(MPSOLID_SOURCE_DIR) + "/cases/shock_rod.toml", overrides);
 }
 
 std::vector<int> bench_threads() {

@@ -19,6 +19,16 @@ inline double weight(double r, double re) {
   return (r > 0.0 && r < re) ? re / r - 1.0 : 0.0;
 }
 
+// n0 = sum_j w(|r0_ij|) over a full square-lattice neighbourhood of spacing l0.
+inline double lattice_number_density(double l0, double re) {
+  double n0 = 0.0;
+  const int reach = static_cast<int>(std::ceil(re / l0));
+  for (int a = -reach; a <= reach; ++a)
+    for (int b = -reach; b <= reach; ++b)
+      n0 += weight(l0 * std::sqrt(static_cast<double>(a * a + b * b)), re);
+  return n0;
+}
+
 inline double cross(double ax, double ay, double bx, double by) {
   return ax * by - ay * bx;
 }

@@ -29,11 +29,13 @@ inline double youngs_modulus(double lambda, double mu) {
 }  // namespace
 
 FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bonds,
-                                     const ModelOptions& options)
-    : min_jacobian_(options.min_jacobian),
-      consistent_hourglass_(options.consistent_hourglass && options.hourglass > 0) {
+                                     const OptionValues& options)
+    : volume_(bonds.geometry.volume) {
+  const HourglassSettings hourglass = hourglass_settings(options);
+  consistent_hourglass_ = hourglass.consistent && hourglass.alpha > 0;
   const std::size_t n = p.size();
-  const double volume = bonds.constants.volume;
+  const double volume = volume_;
+  const double n0 = number_density(bonds);
   a_inv_.assign(4 * n, 0.0);
   def_grad_.assign(4 * n, 0.0);
   stress_a_.assign(4 * n, 0.0);
@@ -46,9 +48,7 @@ FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bo
       const std::size_t j = bonds.neighbor[b];
       const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
       const double len2 = r0x * r0x + r0y * r0y;
-      // strain_coef = (d / n0) w0 / |r0|, so w0 = strain_coef |r0| n0 / d.
-      const double w0 = bonds.strain_coef[b] * std::sqrt(len2) * bonds.constants.n0 / kDim;
-      const double wl = w0 / len2;
+      const double wl = bond_math::weight(std::sqrt(len2), bonds.geometry.re) / len2;
       a[0] += wl * r0x * r0x;
       a[1] += wl * r0x * r0y;
       a[2] += wl * r0y * r0x;
@@ -56,7 +56,7 @@ FiniteStrainModel::FiniteStrainModel(const ParticleStore& p, const BondTable& bo
       const double e_ij =
           0.5 * (youngs_modulus(p.lambda[i], p.mu[i]) + youngs_modulus(p.lambda[j], p.mu[j]));
       wl_[b] = wl;
-      hourglass_[b] = options.hourglass * e_ij * volume * (2.0 / bonds.constants.n0) * wl;
+      hourglass_[b] = hourglass.alpha * e_ij * volume * (2.0 / n0) * wl;
     }
     const double d = det(a);
     // An interior particle has A = (n0 / d) I; neighbours on one line give det A = 0.
@@ -86,7 +86,7 @@ void FiniteStrainModel::compute_strain(ParticleStore& p, const BondTable& bonds,
       g[2] += w * ry * bonds.r0x[b];
       g[3] += w * ry * bonds.r0y[b];
     }
-    const double volume = bonds.constants.volume;
+    const double volume = volume_;
     const double* ai = &a_inv_[4 * i];
     double* f = &def_grad_[4 * i];
     store_times_a_inv(g, ai, f);
@@ -169,17 +169,19 @@ double FiniteStrainModel::particle_strain_energy(const ParticleStore& p, const B
     hourglass += hourglass_[b] * (g[0] * g[0] + g[1] * g[1]);
   }
   // Each bond is seen from both ends: a quarter of k |g|^2 per end.
-  return bonds.constants.volume * density + 0.25 * hourglass;
+  return volume_ * density + 0.25 * hourglass;
 }
 
-IntegrityReport FiniteStrainModel::check_integrity(const ParticleStore&, const BondTable&) const {
+IntegrityReport FiniteStrainModel::check_integrity(const ParticleStore&, const BondTable&,
+                                                   const IntegrityLimits& limits) const {
   IntegrityReport r;
   if (jacobian_.empty()) return r;
   r.particle = index_of_min(jacobian_);
   r.neighbor = r.particle;
   r.value = jacobian_[r.particle];
-  r.failed = !(r.value > min_jacobian_);
-  r.criterion = fmt::format("particle neighbourhood collapsed (J = det F <= {})", min_jacobian_);
+  r.failed = !(r.value > limits.min_jacobian);
+  r.criterion =
+      fmt::format("particle neighbourhood collapsed (J = det F <= {})", limits.min_jacobian);
   return r;
 }
 

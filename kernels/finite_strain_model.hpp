@@ -27,6 +27,7 @@
 #include <array>
 #include <vector>
 
+#include "kernels/hourglass_options.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/particle_store.hpp"
@@ -37,9 +38,11 @@ class FiniteStrainModel {
  public:
   static constexpr const char* name = "finite_strain";
   static constexpr bool uses_rotation = false;
+  // Options in the case's [finite_strain] section.
+  static ModelInfo info() { return {name, name, hourglass_option_table()}; }
 
   // Throws InputError if a particle's neighbourhood cannot define A_i^-1.
-  FiniteStrainModel(const ParticleStore& p, const BondTable& bonds, const ModelOptions& options);
+  FiniteStrainModel(const ParticleStore& p, const BondTable& bonds, const OptionValues& options);
 
   // Pass 1 (F, J, P) and, with the consistent hourglass, pass 1b (Q).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range);
@@ -47,7 +50,8 @@ class FiniteStrainModel {
   double particle_strain_energy(const ParticleStore& p, const BondTable& bonds,
                                 std::size_t i) const;
   // J_i at or below the minimum (needs the strain pass at the current state).
-  IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds) const;
+  IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds,
+                                  const IntegrityLimits& limits) const;
 
   // Row-major 2x2 tensors per particle, from the last strain pass.
   const std::vector<double>& deformation_gradient() const { return def_grad_; }
@@ -58,7 +62,7 @@ class FiniteStrainModel {
   std::array<double, 2> hourglass_gap(const ParticleStore& p, const BondTable& bonds, std::size_t i,
                                       std::uint32_t b) const;
 
-  double min_jacobian_;
+  double volume_;
   bool consistent_hourglass_;
   std::vector<double> a_inv_;      // A_i^-1, 4 per particle
   std::vector<double> def_grad_;   // F_i, 4 per particle

@@ -1,17 +1,25 @@
 #pragma once
-// What every bond model shares besides the bond loop: its options and the
-// integrity check it reports to the blow-up diagnosis.
+// What every bond model shares besides the bond loop: the lattice constants
+// its coefficients start from, and the integrity check it reports to the
+// blow-up diagnosis.
 #include <cstddef>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "kernels/bond_math.hpp"
+#include "src/core/bonds.hpp"
+
 namespace mpsolid {
 
-struct ModelOptions {
-  double hourglass = 1.0;            // finite_strain: hourglass penalty coefficient alpha
-  bool consistent_hourglass = true;  // finite_strain: full gradient (true) or F held fixed
-  double min_jacobian = 0.1;  // finite_strain: J at or below this is a collapsed neighbourhood
+// n0 of the bond table's lattice (MODEL.md section 1).
+inline double number_density(const BondTable& bonds) {
+  return bond_math::lattice_number_density(bonds.geometry.l0, bonds.geometry.re);
+}
+
+// Thresholds of the integrity checks, from the case's [stability] section.
+struct IntegrityLimits {
+  double min_jacobian = 0.1;  // J at or below this is a collapsed neighbourhood
 };
 
 // The worst particle by a model's own integrity measure (smallest is worst).

@@ -1,21 +1,46 @@
 #include "kernels/model_registry.hpp"
 
+#include <utility>
+
 #include "src/core/types.hpp"
 
 namespace mpsolid {
 
-const std::vector<std::string>& model_names() {
-  static const std::vector<std::string> names = {PaperModel::name, PaperConservativeModel::name,
-                                                 FiniteStrainModel::name};
+namespace {
+template <std::size_t... K>
+std::vector<ModelInfo> catalog_of(std::index_sequence<K...>) {
+  static_assert((BondModel<std::variant_alternative_t<K, AnyModel>> && ...));
+  return {std::variant_alternative_t<K, AnyModel>::info()...};
+}
+
+template <std::size_t K = 0>
+AnyModel make_by_name(const std::string& name, const ParticleStore& p, const BondTable& bonds,
+                      const OptionValues& options) {
+  if constexpr (K == std::variant_size_v<AnyModel>) {
+    throw InputError("unknown model '" + name + "'");
+  } else {
+    using Model = std::variant_alternative_t<K, AnyModel>;
+    if (name == Model::name) return AnyModel(std::in_place_index<K>, p, bonds, options);
+    return make_by_name<K + 1>(name, p, bonds, options);
+  }
+}
+}  // namespace
+
+const std::vector<ModelInfo>& model_catalog() {
+  static const std::vector<ModelInfo> catalog =
+      catalog_of(std::make_index_sequence<std::variant_size_v<AnyModel>>());
+  return catalog;
+}
+
+std::vector<std::string> model_names() {
+  std::vector<std::string> names;
+  for (const ModelInfo& m : model_catalog()) names.push_back(m.name);
   return names;
 }
 
 AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
-                    const ModelOptions& options) {
-  if (name == PaperModel::name) return PaperModel(p, bonds, options);
-  if (name == PaperConservativeModel::name) return PaperConservativeModel(p, bonds, options);
-  if (name == FiniteStrainModel::name) return FiniteStrainModel(p, bonds, options);
-  throw InputError("unknown model '" + name + "'");
+                    const OptionValues& options) {
+  return make_by_name(name, p, bonds, options);
 }
 
 }  // namespace mpsolid

@@ -1,23 +1,27 @@
 #pragma once
-// The bond models a case can choose (`model = ...`). Each is a type with the
-// same interface (compute_strain, compute_forces, particle_strain_energy,
-// check_integrity, uses_rotation); the time step is written once as a
-// template over it, and a run dispatches once per call.
+// The bond models a case can choose (`model = ...`): one line each in
+// AnyModel. The time step is written once as a template over the model
+// (kernels/model_concept.hpp), and a run dispatches once per call.
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "kernels/finite_strain_model.hpp"
+#include "kernels/model_concept.hpp"
 #include "kernels/paper_model.hpp"
 
 namespace mpsolid {
 
 using AnyModel = std::variant<PaperModel, PaperConservativeModel, FiniteStrainModel>;
 
-// The names accepted by `model = ...`, in variant order.
-const std::vector<std::string>& model_names();
+// Every model's name, case section and options table, in variant order.
+const std::vector<ModelInfo>& model_catalog();
+// Their names, in the same order.
+std::vector<std::string> model_names();
 
+// The model called `name`, its coefficients made for `bonds`; `options` are
+// its validated section (CaseSpec::model_options).
 AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
-                    const ModelOptions& options);
+                    const OptionValues& options);
 
 }  // namespace mpsolid

@@ -18,11 +18,13 @@
 // gradient adds, per bond, -C_ij u^s_ij to the force and
 // 1/2 C_ij |r_ij| (u_ij x e_ij) = 1/2 C_ij (u_ij x r_ij) to the torque of
 // each end.
+#include <cmath>
 #include <vector>
 
 #include "kernels/bond_loop.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
+#include "src/core/option_table.hpp"
 #include "src/core/parallel.hpp"
 #include "src/core/particle_store.hpp"
 
@@ -33,15 +35,34 @@ class PaperModelT {
  public:
   static constexpr const char* name = EnergyConsistent ? "paper_conservative" : "paper";
   static constexpr bool uses_rotation = true;
+  static ModelInfo info() { return {name, "", {}}; }
 
-  PaperModelT() = default;
-  PaperModelT(const ParticleStore&, const BondTable&, const ModelOptions&) {}
+  PaperModelT() = default;  // no bonds: only a placeholder to assign a model to
+  // The per-bond coefficients (MODEL.md sections 2.3-2.4), mu_ij the
+  // arithmetic mean of the two ends' mu.
+  PaperModelT(const ParticleStore& p, const BondTable& bonds, const OptionValues&)
+      : volume_(bonds.geometry.volume) {
+    const double d_over_n0 = kDim / number_density(bonds);
+    strain_coef_.resize(bonds.entry_count());
+    spring_coef_.resize(bonds.entry_count());
+    parallel_for(0, p.size(), [&](std::size_t i) {
+      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+        const std::size_t j = bonds.neighbor[b];
+        const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+        const double len = std::sqrt(r0x * r0x + r0y * r0y);
+        const double w0 = bond_math::weight(len, bonds.geometry.re);
+        const double mu_ij = 0.5 * (p.mu[i] + p.mu[j]);
+        strain_coef_[b] = d_over_n0 * w0 / len;
+        spring_coef_[b] = volume_ * d_over_n0 * 4.0 * mu_ij * w0 / (len * len);
+      }
+    });
+  }
 
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) const {
     parallel_for(range.begin, range.end, [&](std::size_t i) {
       double eps = 0.0;
       for_each_bond(p, bonds, i, [&](std::uint32_t b, std::size_t, const auto& v, double inv_len) {
-        eps += bonds.strain_coef[b] * bond_math::normal_extension(v, inv_len);
+        eps += strain_coef_[b] * bond_math::normal_extension(v, inv_len);
       });
       p.strain[i] = eps;
       p.pressure[i] = -p.lambda[i] * eps;
@@ -49,26 +70,26 @@ class PaperModelT {
   }
 
   void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
-    const double volume = bonds.constants.volume;
+    const double volume = volume_;
     parallel_for(range.begin, range.end, [&](std::size_t i) {
       const double pi = p.pressure[i];
       double fx = 0.0, fy = 0.0, torque = 0.0;
-      for_each_bond(
-          p, bonds, i, [&](std::uint32_t b, std::size_t j, const auto& v, double inv_len) {
-            const double k = bonds.spring_coef[b];
-            const double c = volume * bonds.strain_coef[b] * (pi + p.pressure[j]) * inv_len;
-            fx += k * v.ux - c * v.rx;
-            fy += k * v.uy - c * v.ry;
-            double bond_torque = k * bond_math::cross(v.rx, v.ry, v.ux, v.uy);
-            if constexpr (EnergyConsistent) {
-              // u^s = u - (u . e) e
-              const double un = bond_math::normal_extension(v, inv_len) * inv_len;
-              fx -= c * (v.ux - un * v.rx);
-              fy -= c * (v.uy - un * v.ry);
-              bond_torque += c * bond_math::cross(v.ux, v.uy, v.rx, v.ry);
-            }
-            torque += bond_torque;
-          });
+      for_each_bond(p, bonds, i,
+                    [&](std::uint32_t b, std::size_t j, const auto& v, double inv_len) {
+                      const double k = spring_coef_[b];
+                      const double c = volume * strain_coef_[b] * (pi + p.pressure[j]) * inv_len;
+                      fx += k * v.ux - c * v.rx;
+                      fy += k * v.uy - c * v.ry;
+                      double bond_torque = k * bond_math::cross(v.rx, v.ry, v.ux, v.uy);
+                      if constexpr (EnergyConsistent) {
+                        // u^s = u - (u . e) e
+                        const double un = bond_math::normal_extension(v, inv_len) * inv_len;
+                        fx -= c * (v.ux - un * v.rx);
+                        fy -= c * (v.uy - un * v.ry);
+                        bond_torque += c * bond_math::cross(v.ux, v.uy, v.rx, v.ry);
+                      }
+                      torque += bond_torque;
+                    });
       p.fx[i] = fx;
       p.fy[i] = fy;
       p.torque[i] = 0.5 * torque;
@@ -82,16 +103,16 @@ class PaperModelT {
                                 std::size_t i) const {
     double bond_energy = 0.0;
     for_each_bond(p, bonds, i, [&](std::uint32_t b, std::size_t, const auto& v, double) {
-      bond_energy += bonds.spring_coef[b] * (v.ux * v.ux + v.uy * v.uy);
+      bond_energy += spring_coef_[b] * (v.ux * v.ux + v.uy * v.uy);
     });
     // Each bond is seen from both ends: a quarter of k |u|^2 per end.
-    return 0.25 * bond_energy +
-           0.5 * p.lambda[i] * bonds.constants.volume * p.strain[i] * p.strain[i];
+    return 0.25 * bond_energy + 0.5 * p.lambda[i] * volume_ * p.strain[i] * p.strain[i];
   }
 
   // A bond turned inside out: r_ij . R(theta_ij) r0_ij <= 0. Reports the bond
   // with the smallest cosine between r_ij and R(theta_ij) r0_ij.
-  IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds) const {
+  IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds,
+                                  const IntegrityLimits&) const {
     std::vector<double> worst(p.size());
     std::vector<std::size_t> partner(p.size());
     parallel_for(0, p.size(), [&](std::size_t i) {
@@ -119,6 +140,15 @@ class PaperModelT {
     r.criterion = "bond turned inside out (r_ij . R(theta_ij) r0_ij <= 0)";
     return r;
   }
+
+  // (d / n0) w0_ij / |r0_ij| and k_ij = V (d / n0) 4 mu_ij w0_ij / |r0_ij|^2 (N/m) per bond entry.
+  const std::vector<double>& strain_coefficients() const { return strain_coef_; }
+  const std::vector<double>& spring_coefficients() const { return spring_coef_; }
+
+ private:
+  double volume_ = 0;
+  std::vector<double> strain_coef_;
+  std::vector<double> spring_coef_;
 };
 
 using PaperModel = PaperModelT<false>;

@@ -3,11 +3,13 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "kernels/model_common.hpp"
+
 namespace mpsolid::reference {
 
 PaperResult paper_model(const ParticleStore& p, const BondTable& bonds, bool energy_consistent) {
   const std::size_t n = p.size();
-  const double d = 2.0, n0 = bonds.constants.n0, re = bonds.constants.re;
+  const double d = 2.0, re = bonds.geometry.re, n0 = number_density(bonds);
   PaperResult out;
   out.strain.assign(n, 0.0);
   out.pressure.assign(n, 0.0);
@@ -61,7 +63,7 @@ PaperResult paper_model(const ParticleStore& p, const BondTable& bonds, bool ene
       const std::size_t a = end == 0 ? e.i : e.j;
       const double sign = end == 0 ? 1.0 : -1.0;  // u_ji = -u_ij, r_ji = -r_ij
       const double m = 1.0 / p.inv_mass[a];
-      const double rho = m / bonds.constants.volume;  // m = rho l0^2 D
+      const double rho = m / bonds.geometry.volume;  // m = rho l0^2 D
       const double sn_x = 2 * mu * sign * unx / e.l0, sn_y = 2 * mu * sign * uny / e.l0;
       const double ss_x = 2 * mu * sign * usx / e.l0, ss_y = 2 * mu * sign * usy / e.l0;
       const double c = d / (rho * n0);
@@ -77,7 +79,7 @@ PaperResult paper_model(const ParticleStore& p, const BondTable& bonds, bool ene
       out.torque[a] += 0.5 * (sign * e.rx * fsy - sign * e.ry * fsx);
     }
     if (energy_consistent) {
-      const double c = bonds.constants.volume * (d / n0) * e.w0 *
+      const double c = bonds.geometry.volume * (d / n0) * e.w0 *
                        (out.pressure[e.i] + out.pressure[e.j]) / (e.l0 * e.r);
       out.fx[e.i] -= c * usx;
       out.fy[e.i] -= c * usy;
@@ -96,7 +98,7 @@ FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& 
   using Eigen::Matrix2d;
   using Eigen::Vector2d;
   const std::size_t n = p.size();
-  const double re = bonds.constants.re, n0 = bonds.constants.n0, volume = bonds.constants.volume;
+  const double re = bonds.geometry.re, n0 = number_density(bonds), volume = bonds.geometry.volume;
   auto r0 = [&](std::size_t i, std::size_t j) {
     return Vector2d(p.x0[j] - p.x0[i], p.y0[j] - p.y0[i]);
   };

@@ -9,8 +9,8 @@
 #include "src/app/progress.hpp"
 #include "src/app/run.hpp"
 #include "src/app/signals.hpp"
-#include "src/case/case_reader.hpp"
 #include "src/core/parallel.hpp"
+#include "src/solver/case_loader.hpp"
 
 int main(int argc, char** argv) {
   using namespace mpsolid;
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
       options.command_line = command_line;
       return resume_run(overrides, options);
     }
-    const CaseSpec spec = read_case(case_path, overrides);
+    const CaseSpec spec = load_case(case_path, overrides);
     RunOptions options;
     options.out_dir =
         out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);

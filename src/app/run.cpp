@@ -11,13 +11,13 @@
 
 #include "src/app/progress.hpp"
 #include "src/app/signals.hpp"
-#include "src/case/case_reader.hpp"
 #include "src/core/parallel.hpp"
 #include "src/core/state_snapshot.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/run_folder.hpp"
 #include "src/io/run_report.hpp"
+#include "src/solver/case_loader.hpp"
 #include "src/solver/simulation.hpp"
 
 namespace mpsolid {
@@ -232,7 +232,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
           o, fmt::join(kResumeKeys, ", ")));
   }
   const Checkpoint checkpoint = read_checkpoint(path);
-  const CaseSpec spec = parse_case(checkpoint.case_toml, path.string(), overrides);
+  const CaseSpec spec = load_case_text(checkpoint.case_toml, path.string(), overrides);
   const double at = static_cast<double>(checkpoint.step) * spec.dt;
   if (spec.step_count() < checkpoint.step)
     throw InputError(fmt::format("time.end = {} s is before the checkpoint (t = {} s, step {})",

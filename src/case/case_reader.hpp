@@ -9,11 +9,15 @@
 
 namespace mpsolid {
 
-// `overrides` are "dotted.key=VALUE" strings from --set.
-CaseSpec read_case(const std::string& path, const std::vector<std::string>& overrides = {});
+// `overrides` are "dotted.key=VALUE" strings from --set; `models` are the
+// models a case may choose, with their options tables (kernels' registry,
+// brought in by src/solver/case_loader.hpp).
+CaseSpec read_case(const std::string& path, const std::vector<std::string>& overrides,
+                   const std::vector<ModelInfo>& models);
 
-// Same, from TOML text (tests); `source_name` stands in for the file name.
+// Same, from TOML text; `source_name` stands in for the file name.
 CaseSpec parse_case(const std::string& toml_text, const std::string& source_name,
-                    const std::vector<std::string>& overrides = {});
+                    const std::vector<std::string>& overrides,
+                    const std::vector<ModelInfo>& models);
 
 }  // namespace mpsolid

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/model_common.hpp"
 #include "src/core/material.hpp"
+#include "src/core/option_table.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -62,14 +62,16 @@ struct StabilitySpec {
   std::int64_t check_interval = 500;  // steps
   double max_speed = 1.0;             // in units of the largest dilatational wave speed
   double energy_tolerance = 0.1;      // |KE + PE - W - E0| / max(W, E0)
+  double min_jacobian = 0.1;          // J = det F at or below this: a collapsed neighbourhood
 };
 
 struct CaseSpec {
   std::string name;    // output folder name (default: the file's stem)
   std::string source;  // the case file it came from
   std::string model = "paper";
-  double l0 = 0;       // lattice spacing (m)
-  double depth = 1.0;  // out-of-plane depth D (m)
+  std::string model_section;  // the case section of the model's options ("" if it has none)
+  double l0 = 0;              // lattice spacing (m)
+  double depth = 1.0;         // out-of-plane depth D (m)
   std::vector<Material> materials;
   std::vector<BodySpec> bodies;  // in name order: this fixes the particle ids
   std::vector<LoadSpec> loads;
@@ -87,7 +89,7 @@ struct CaseSpec {
   double history_interval = 0;     // s; a history.csv row this often (and at frames)
   double checkpoint_interval = 0;  // s; 0: only at the end of the run (and on a stop signal)
   int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
-  ModelOptions model_options;      // hourglass (finite_strain) and min_jacobian (stability)
+  OptionValues model_options;      // the chosen model's section, defaults filled in
   StabilitySpec stability;
   // numerics.flush_subnormals: subnormals flushed to zero in the solver's
   // loops (src/float_mode.hpp). Opt-in: faster while a wave crosses a fine
@@ -103,9 +105,5 @@ struct CaseSpec {
   // output interval is a whole number of steps) and notes it in resolved_toml.
   void set_auto_time_step(double limit, double omega_max);
 };
-
-// The case as TOML with every default and override filled in; reads back as
-// the same case.
-std::string resolved_case_toml(const CaseSpec& c);
 
 }  // namespace mpsolid

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "build_info.hpp"
+#include "src/core/hash.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/file_snapshot.hpp"
 #include "src/io/hdf5_file.hpp"
@@ -14,31 +15,13 @@ namespace mpsolid {
 
 namespace {
 constexpr const char* kFormat = "mpsolid checkpoint";
-constexpr std::int64_t kFormatVersion = 2;  // 2: peak_work
+constexpr std::int64_t kFormatVersion =
+    3;  // 2: peak_work; 3: bond hash of topology and geometry only
 
-// FNV-1a over everything stored: a damaged byte anywhere is found on reading.
-class Hasher {
- public:
-  void bytes(const void* data, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(data);
-    for (std::size_t k = 0; k < n; ++k) h_ = (h_ ^ c[k]) * 1099511628211ull;
-  }
-  template <class T>
-  void value(T v) {
-    bytes(&v, sizeof v);
-  }
-  void text(const std::string& s) {
-    value<std::uint64_t>(s.size());
-    bytes(s.data(), s.size());
-  }
-  std::uint64_t get() const { return h_; }
-
- private:
-  std::uint64_t h_ = 1469598103934665603ull;
-};
-
+// Everything stored goes into the content hash: a damaged byte anywhere is
+// found on reading.
 std::uint64_t content_hash(const Checkpoint& c) {
-  Hasher h;
+  Fnv1a h;
   h.value(kFormatVersion);
   h.value(c.step);
   h.value(c.peak_work);
@@ -63,7 +46,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
     h.value(l.cx_on);
     h.value(l.cy_on);
   }
-  return h.get();
+  return h.value();
 }
 
 std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
@@ -228,8 +211,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
       throw h5::Error("it is not an mpsolid checkpoint");
     const auto version = file.attribute<std::int64_t>("format_version");
     if (version != kFormatVersion)
-      throw h5::Error(fmt::format("checkpoint format version {}, this build reads version {}",
-                                  version, kFormatVersion));
+      throw InputError(fmt::format(
+          "{}: checkpoint format version {}, this build reads only version {} ({}); resume it "
+          "with the mpsolid that wrote it ({}) or run the case afresh",
+          path.string(), version, kFormatVersion,
+          version < kFormatVersion ? "an older format" : "a newer format",
+          file.has("written_by") ? file.read_string("written_by") : "unknown"));
     c.step = file.attribute<std::int64_t>("step");
     c.peak_work = file.attribute<double>("peak_work");
     c.bond_hash = file.attribute<std::uint64_t>("bond_hash");

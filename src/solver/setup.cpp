@@ -83,7 +83,7 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   {
     auto t = timers.time(Phase::neighbors);
-    s.bonds = build_bonds(p, kernel_constants(spec.l0, spec.depth));
+    s.bonds = build_bonds(p, bond_geometry(spec.l0, spec.depth));
   }
 
   for (std::size_t b : order)

@@ -67,8 +67,11 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   if (!v.ok) return v;
   refresh_fields();
   auto t = timers_.time(Phase::diagnostics);
-  const IntegrityReport integrity =
-      std::visit([&](const auto& model) { return model.check_integrity(p, state_.bonds); }, model_);
+  const IntegrityReport integrity = std::visit(
+      [&](const auto& model) {
+        return model.check_integrity(p, state_.bonds, {spec_.stability.min_jacobian});
+      },
+      model_);
   if (integrity.failed) {
     v.ok = false;
     v.criterion = integrity.criterion;

@@ -12,7 +12,7 @@ std::string source_path(const std::string& relative) {
 }
 
 CaseSpec rod_case(const std::vector<std::string>& overrides) {
-  return read_case(source_path("cases/shock_rod.toml"), overrides);
+  return load_case(source_path("cases/shock_rod.toml"), overrides);
 }
 
 CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt,
@@ -45,7 +45,7 @@ y = [{y0}, {y1}]
 )",
                         fmt::arg("x0", -3 * l0), fmt::arg("y0", -2 * l0),
                         fmt::arg("y1", (ny + 2) * l0));
-  return parse_case(text, "free_block.toml", {"model=" + model});
+  return load_case_text(text, "free_block.toml", {"model=" + model});
 }
 
 double max_abs(const std::vector<double>& v) {

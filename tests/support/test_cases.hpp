@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "src/case/case_reader.hpp"
+#include "src/solver/case_loader.hpp"
 #include "src/solver/simulation.hpp"
 
 namespace mpsolid::testing {

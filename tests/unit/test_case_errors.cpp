@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "src/case/case_reader.hpp"
 #include "src/core/types.hpp"
+#include "src/solver/case_loader.hpp"
 
 namespace mpsolid {
 namespace {
@@ -84,7 +84,7 @@ std::string edit(const std::string& from, const std::string& to) {
 // case was accepted. Any other exception fails the test.
 std::optional<std::string> error_of(const std::string& text, const Strings& overrides = {}) {
   try {
-    parse_case(text, "bad.toml", overrides);
+    load_case_text(text, "bad.toml", overrides);
   } catch (const InputError& e) {
     return std::string(e.what());
   } catch (const std::exception& e) {
@@ -111,7 +111,7 @@ void expect_error(const std::string& text, const Strings& needles, const Strings
   } while (0)
 
 TEST(CaseErrors, TheBaseCaseIsValid) {
-  const CaseSpec spec = parse_case(base_toml(), "bad.toml");
+  const CaseSpec spec = load_case_text(base_toml(), "bad.toml");
   EXPECT_EQ(spec.name, "base");
   ASSERT_EQ(spec.bodies.size(), 3u);
   ASSERT_EQ(spec.loads.size(), 1u);
@@ -163,14 +163,46 @@ TEST(CaseErrors, TimeStepMustBeANumberOrAuto) {
                      {"bad.toml", "time.safety", "only with dt = \"auto\""});
 }
 
+// ---- model options: each model's own table ---------------------------------
+
+TEST(CaseErrors, ModelOptionsAreCheckedAgainstTheModelsTable) {
+  EXPECT_INPUT_ERROR(base_toml() + "\n[finite_strain]\nhourglass = -1.0\n",
+                     {"bad.toml", "finite_strain.hourglass", "-1", "[0, inf)"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[finite_strain]\nhourglass_form = \"loose\"\n",
+                     {"bad.toml", "finite_strain.hourglass_form", "'loose'", "consistent, frozen"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[finite_strain]\nhourglas = 1.0\n",
+                     {"bad.toml", "finite_strain.hourglas", "unknown key", "hourglass_form"});
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "finite_strain.hourglass", "expected a number"},
+                     {"finite_strain.hourglass=\"big\""});
+}
+
+TEST(CaseErrors, ModelOptionsTakeDefaultsAndReadBack) {
+  const CaseSpec plain = load_case_text(base_toml(), "bad.toml", {"model=finite_strain"});
+  EXPECT_EQ(plain.model_section, "finite_strain");
+  EXPECT_EQ(plain.model_options.number("hourglass"), 1.0);
+  EXPECT_EQ(plain.model_options.choice("hourglass_form"), "consistent");
+  const CaseSpec set = load_case_text(base_toml(), "bad.toml",
+                                      {"model=finite_strain", "finite_strain.hourglass=0.5",
+                                       "finite_strain.hourglass_form=frozen"});
+  EXPECT_EQ(set.model_options.number("hourglass"), 0.5);
+  EXPECT_EQ(set.model_options.choice("hourglass_form"), "frozen");
+  const CaseSpec again = load_case_text(set.resolved_toml, "case.resolved.toml");
+  EXPECT_EQ(again.model_options, set.model_options);
+  // Another model's section is still checked, but does not apply.
+  const CaseSpec paper =
+      load_case_text(base_toml() + "\n[finite_strain]\nhourglass = 2.0\n", "bad.toml");
+  EXPECT_EQ(paper.model_section, "");
+  EXPECT_TRUE(paper.model_options.numbers.empty());
+}
+
 TEST(CaseErrors, FlushSubnormalsIsABoolean) {
   EXPECT_INPUT_ERROR(base_toml() + "\n[numerics]\nflush_subnormals = 1\n",
                      {"bad.toml", "numerics.flush_subnormals", "true or false"});
   EXPECT_INPUT_ERROR(base_toml() + "\n[numerics]\nflush = true\n",
                      {"bad.toml", "numerics.flush", "flush_subnormals"});
-  EXPECT_TRUE(parse_case(base_toml() + "\n[numerics]\nflush_subnormals = true\n", "bad.toml")
+  EXPECT_TRUE(load_case_text(base_toml() + "\n[numerics]\nflush_subnormals = true\n", "bad.toml")
                   .flush_subnormals);
-  EXPECT_FALSE(parse_case(base_toml(), "bad.toml").flush_subnormals);
+  EXPECT_FALSE(load_case_text(base_toml(), "bad.toml").flush_subnormals);
 }
 
 TEST(CaseErrors, HistoryIntervalWithinDtAndFrameInterval) {
@@ -182,7 +214,7 @@ TEST(CaseErrors, HistoryIntervalWithinDtAndFrameInterval) {
 
 TEST(GoodCases, AutoTimeStepFitsWholeStepsInTheFinestOutput) {
   CaseSpec spec =
-      parse_case(base_toml(), "bad.toml", {"time.dt=\"auto\"", "output.history_interval=1e-4"});
+      load_case_text(base_toml(), "bad.toml", {"time.dt=\"auto\"", "output.history_interval=1e-4"});
   EXPECT_TRUE(spec.dt_auto);
   EXPECT_EQ(spec.dt, 0.0);
   EXPECT_EQ(spec.dt_safety, 0.4);
@@ -193,7 +225,7 @@ TEST(GoodCases, AutoTimeStepFitsWholeStepsInTheFinestOutput) {
   EXPECT_EQ(spec.steps_per_frame(), 220);
   EXPECT_EQ(spec.step_count(), 2200);
   // The resolved case holds the chosen step as a number and reads back.
-  const CaseSpec again = parse_case(spec.resolved_toml, "case.resolved.toml");
+  const CaseSpec again = load_case_text(spec.resolved_toml, "case.resolved.toml");
   EXPECT_FALSE(again.dt_auto);
   EXPECT_EQ(again.dt, spec.dt);
   EXPECT_NE(spec.resolved_toml.find("time.dt = \"auto\" chose"), std::string::npos);
@@ -449,7 +481,7 @@ TEST(CaseErrors, TomlSyntaxErrors) {
 TEST(CaseErrors, MissingFileNamesThePath) {
   const std::string path = std::string(MPSOLID_SOURCE_DIR) + "/cases/no_such_case.toml";
   try {
-    read_case(path);
+    load_case(path);
     FAIL() << "read_case accepted a missing file";
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -461,7 +493,7 @@ TEST(CaseErrors, MissingFileNamesThePath) {
 TEST(CaseErrors, DirectoryInsteadOfAFile) {
   const std::string path = std::string(MPSOLID_SOURCE_DIR) + "/cases";
   try {
-    read_case(path);
+    load_case(path);
     FAIL() << "read_case accepted a directory";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -506,7 +538,7 @@ TEST(OverrideErrors, KeyUnderAValue) {
 // ---- good input -------------------------------------------------------------
 
 TEST(GoodCases, ShippedCasesParse) {
-  const CaseSpec rod = read_case(shipped("shock_rod.toml"));
+  const CaseSpec rod = load_case(shipped("shock_rod.toml"));
   EXPECT_EQ(rod.name, "shock_rod");
   EXPECT_EQ(rod.model, "paper");
   EXPECT_DOUBLE_EQ(rod.l0, 0.002);
@@ -516,7 +548,7 @@ TEST(GoodCases, ShippedCasesParse) {
   EXPECT_EQ(rod.step_count(), 1000000);
   EXPECT_EQ(rod.steps_per_frame(), 100000);
 
-  const CaseSpec strong = read_case(shipped("shock_rod_55kN.toml"));
+  const CaseSpec strong = load_case(shipped("shock_rod_55kN.toml"));
   EXPECT_EQ(strong.name, "shock_rod_55kN");
   EXPECT_EQ(strong.model, "finite_strain");
   ASSERT_EQ(strong.loads.size(), 1u);
@@ -526,25 +558,25 @@ TEST(GoodCases, ShippedCasesParse) {
 }
 
 TEST(GoodCases, OverridesApply) {
-  const CaseSpec fine = read_case(shipped("shock_rod.toml"), {"l0=0.001"});
+  const CaseSpec fine = load_case(shipped("shock_rod.toml"), {"l0=0.001"});
   EXPECT_DOUBLE_EQ(fine.l0, 0.001);
 
-  const CaseSpec shorter = read_case(shipped("shock_rod.toml"), {"time.end=0.002"});
+  const CaseSpec shorter = load_case(shipped("shock_rod.toml"), {"time.end=0.002"});
   EXPECT_DOUBLE_EQ(shorter.end, 0.002);
   EXPECT_EQ(shorter.step_count(), 200000);
 
-  const CaseSpec bare = read_case(shipped("shock_rod.toml"), {"model=paper"});
+  const CaseSpec bare = load_case(shipped("shock_rod.toml"), {"model=paper"});
   EXPECT_EQ(bare.model, "paper");
 
   const CaseSpec strong =
-      read_case(shipped("shock_rod.toml"), {"loads.shock.force=[55900.0, 0.0]"});
+      load_case(shipped("shock_rod.toml"), {"loads.shock.force=[55900.0, 0.0]"});
   ASSERT_EQ(strong.loads.size(), 1u);
   EXPECT_DOUBLE_EQ(strong.loads[0].force[0], 55900.0);
   EXPECT_DOUBLE_EQ(strong.loads[0].force[1], 0.0);
 
   // Several at once; the last one of a key wins.
   const CaseSpec several =
-      read_case(shipped("shock_rod.toml"),
+      load_case(shipped("shock_rod.toml"),
                 {"time.end=0.002", "output.frame_interval=1e-4", "time.end=0.003"});
   EXPECT_DOUBLE_EQ(several.end, 0.003);
   EXPECT_DOUBLE_EQ(several.frame_interval, 1e-4);
@@ -552,14 +584,14 @@ TEST(GoodCases, OverridesApply) {
 
 TEST(GoodCases, OverrideCreatesAMissingTable) {
   const std::string text = edit("[output]\nframe_interval = 1.0e-3\n", "");
-  const CaseSpec spec = parse_case(text, "bad.toml", {"output.frame_interval=2e-3"});
+  const CaseSpec spec = load_case_text(text, "bad.toml", {"output.frame_interval=2e-3"});
   EXPECT_DOUBLE_EQ(spec.frame_interval, 2e-3);
 }
 
 TEST(GoodCases, IntegersAreAcceptedForNumbers) {
-  const CaseSpec spec = read_case(shipped("shock_rod.toml"), {"time.end=1"});
+  const CaseSpec spec = load_case(shipped("shock_rod.toml"), {"time.end=1"});
   EXPECT_DOUBLE_EQ(spec.end, 1.0);
-  const CaseSpec ints = parse_case(
+  const CaseSpec ints = load_case_text(
       edit(edit("E = 2.8e6", "E = 2800000"), "force = [11200.0, 0.0]", "force = [11200, 0]"),
       "bad.toml");
   EXPECT_DOUBLE_EQ(ints.materials.at(0).youngs_modulus, 2.8e6);
@@ -573,7 +605,7 @@ TEST(GoodCases, DefaultsFillIn) {
   text = edit(text, "[output]\nframe_interval = 1.0e-3\n", "");
   text = edit(text, "start = 0.0\n", "");
   text = edit(text, "type = \"step\"\n", "");
-  const CaseSpec spec = parse_case(text, "bad.toml");
+  const CaseSpec spec = load_case_text(text, "bad.toml");
   EXPECT_EQ(spec.model, "paper");
   EXPECT_DOUBLE_EQ(spec.depth, 1.0);
   EXPECT_DOUBLE_EQ(spec.frame_interval, spec.end / 10);
@@ -581,7 +613,7 @@ TEST(GoodCases, DefaultsFillIn) {
 }
 
 TEST(GoodCases, NameDefaultsToTheFileStem) {
-  const CaseSpec spec = parse_case(edit("name = \"base\"\n", ""), "some/dir/my_case.toml");
+  const CaseSpec spec = load_case_text(edit("name = \"base\"\n", ""), "some/dir/my_case.toml");
   EXPECT_EQ(spec.name, "my_case");
 }
 
@@ -649,11 +681,11 @@ TEST(GoodCases, ResolvedTomlReadsBackAsTheSameCase) {
                 "bodies.rod.spin=3.0", "bodies.rod.hold=\"y\"",
                 "bodies.rod.bending_mode={root_x=0.0, length=0.1, tip_velocity=0.5}"}}) {
     SCOPED_TRACE(overrides.empty() ? std::string("no overrides") : overrides.front());
-    const CaseSpec original = read_case(shipped("shock_rod.toml"), overrides);
-    const CaseSpec again = parse_case(original.resolved_toml, "case.resolved.toml");
+    const CaseSpec original = load_case(shipped("shock_rod.toml"), overrides);
+    const CaseSpec again = load_case_text(original.resolved_toml, "case.resolved.toml");
     expect_same_case(original, again);
     // Resolving is idempotent.
-    EXPECT_EQ(parse_case(again.resolved_toml, "case.resolved.toml").resolved_toml,
+    EXPECT_EQ(load_case_text(again.resolved_toml, "case.resolved.toml").resolved_toml,
               again.resolved_toml);
   }
 }
@@ -669,13 +701,13 @@ TEST(GoodCases, ResolvedTomlReadsBackWithUnusualNames) {
     text = edit(text, from, edit(from, "\"rubber\"", "\"rubber.soft\""));
   CaseSpec original;
   try {
-    original = parse_case(text, "odd.toml");
+    original = load_case_text(text, "odd.toml");
   } catch (const InputError& e) {
     SUCCEED() << "refused: " << e.what();
     return;
   }
   try {
-    const CaseSpec again = parse_case(original.resolved_toml, "case.resolved.toml");
+    const CaseSpec again = load_case_text(original.resolved_toml, "case.resolved.toml");
     expect_same_case(original, again);
   } catch (const InputError& e) {
     ADD_FAILURE() << "the case was accepted but its resolved TOML does not read back: " << e.what()

@@ -9,9 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "src/case/case_reader.hpp"
 #include "src/core/parallel.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/io/hdf5_file.hpp"
+#include "src/solver/case_loader.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
@@ -92,7 +93,7 @@ void expect_resume_is_seamless(const std::vector<std::string>& overrides, std::i
 
   set_thread_count(threads);
   const Checkpoint c = read_checkpoint(path);
-  Simulation resumed(parse_case(c.case_toml, path.string()));
+  Simulation resumed(load_case_text(c.case_toml, path.string()));
   restore_state(resumed, c, path.string());
   EXPECT_EQ(resumed.step(), first);
   resumed.advance(second);
@@ -174,6 +175,35 @@ TEST(Checkpoint, RefusesAnotherBondTable) {
     FAIL() << "restored a checkpoint with another bond table";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bond table differs"), std::string::npos) << e.what();
+  }
+}
+
+// The bond hash covers topology and reference geometry, not material
+// constants: those are the case's, which the checkpoint stores whole.
+TEST(Checkpoint, BondHashIsTopologyAndGeometryOnly) {
+  const std::uint64_t base = Simulation(testing::rod_case()).state().bonds.hash();
+  EXPECT_EQ(Simulation(testing::rod_case({"materials.rubber.E=5.0e6"})).state().bonds.hash(), base);
+  EXPECT_EQ(Simulation(testing::rod_case({"model=finite_strain"})).state().bonds.hash(), base);
+  EXPECT_NE(Simulation(testing::rod_case({"l0=0.0025"})).state().bonds.hash(), base);
+  EXPECT_NE(Simulation(testing::rod_case({"bodies.rod.x=[0.0, 0.098]"})).state().bonds.hash(),
+            base);
+}
+
+TEST(Checkpoint, RefusesAnOlderFormatNamingItsWriter) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  write_checkpoint(path, full_checkpoint(sim));
+  h5::File::open(path, true).set_attribute<std::int64_t>("format_version", 2);
+  try {
+    read_checkpoint(path);
+    FAIL() << "read a checkpoint of an older format";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    for (const char* needle : {"format version 2", "reads only version 3", "older format",
+                               "run the case afresh", "mpsolid"})
+      EXPECT_NE(message.find(needle), std::string::npos) << needle << " in: " << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
   }
 }
 

@@ -26,7 +26,7 @@ TEST(PaperModel, KernelsMatchThePlainReference) {
     p.theta[i] = 0.4 + 0.05 * n(rng);  // a large common rotation plus noise
   }
   sim.refresh_fields();
-  PaperModel().compute_forces(p, sim.state().bonds, p.moving());
+  PaperModel(p, sim.state().bonds, {}).compute_forces(p, sim.state().bonds, p.moving());
   const reference::PaperResult ref = reference::paper_model(p, sim.state().bonds);
 
   auto compare = [&](const std::vector<double>& fast, const std::vector<double>& slow,

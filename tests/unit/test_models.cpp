@@ -31,7 +31,7 @@ TEST(PaperConservative, KernelsMatchThePlainReference) {
   ParticleStore& p = sim.particles();
   jiggle(p, sim.spec().l0, 9, 0.4);
   sim.refresh_fields();
-  PaperConservativeModel().compute_forces(p, sim.state().bonds, p.moving());
+  PaperConservativeModel(p, sim.state().bonds, {}).compute_forces(p, sim.state().bonds, p.moving());
   const auto ref = reference::paper_model(p, sim.state().bonds, true);
   const auto plain = reference::paper_model(p, sim.state().bonds, false);
   const double fscale = testing::max_abs(ref.fx), tscale = testing::max_abs(ref.torque);
@@ -56,7 +56,7 @@ TEST(FiniteStrain, AffineDeformationGivesExactGradientEverywhere) {
     p.x[i] = 0.3 + f(0, 0) * p.x0[i] + f(0, 1) * p.y0[i];
     p.y[i] = -0.1 + f(1, 0) * p.x0[i] + f(1, 1) * p.y0[i];
   }
-  FiniteStrainModel model(p, sim.state().bonds, {});
+  FiniteStrainModel model(p, sim.state().bonds, default_options(FiniteStrainModel::info().options));
   model.compute_strain(p, sim.state().bonds, p.all());
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (int k = 0; k < 4; ++k)
@@ -92,9 +92,9 @@ TEST_P(FiniteStrainForms, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case({"model=finite_strain"}));
   ParticleStore& p = sim.particles();
   jiggle(p, sim.spec().l0, 4, 0.0);
-  ModelOptions options;
-  options.hourglass = 1.0;
-  options.consistent_hourglass = consistent;
+  OptionValues options = default_options(FiniteStrainModel::info().options);
+  options.numbers["hourglass"] = 1.0;
+  options.choices["hourglass_form"] = consistent ? "consistent" : "frozen";
   FiniteStrainModel model(p, sim.state().bonds, options);
   model.compute_strain(p, sim.state().bonds, p.all());
   model.compute_forces(p, sim.state().bonds, p.moving());
@@ -133,7 +133,7 @@ TEST_P(EveryModel, RigidRotationIsForceFreeEverywhere) {
     }
     // Round-off only: far below the energy of a 1e-6 strain in every particle.
     const double tiny =
-        p.mu[0] * 1e-12 * sim.state().bonds.constants.volume * static_cast<double>(p.size());
+        p.mu[0] * 1e-12 * sim.state().bonds.geometry.volume * static_cast<double>(p.size());
     EXPECT_LT(std::abs(sim.diagnostics().strain_energy), tiny);
   }
 }

@@ -15,9 +15,9 @@ namespace {
 
 TEST(NumberDensity, MatchesModelValue) {
   for (double l0 : {2e-3, 1e-3, 0.37}) {
-    const KernelConstants k = kernel_constants(l0, 1.0);
-    EXPECT_NEAR(k.n0, 6.539697, 1e-6) << "l0 = " << l0;
-    EXPECT_DOUBLE_EQ(k.re, 2.1 * l0);
+    const BondGeometry g = bond_geometry(l0, 1.0);
+    EXPECT_NEAR(bond_math::lattice_number_density(g.l0, g.re), 6.539697, 1e-6) << "l0 = " << l0;
+    EXPECT_DOUBLE_EQ(g.re, 2.1 * l0);
   }
 }
 
@@ -33,7 +33,7 @@ TEST(BondTable, InteriorParticleHasTwelveBondsSummingToN0) {
   EXPECT_EQ(bonds.end(interior) - bonds.begin(interior), 12u);
   double n = 0.0;
   for (std::uint32_t b = bonds.begin(interior); b < bonds.end(interior); ++b)
-    n += bonds.strain_coef[b] * std::hypot(bonds.r0x[b], bonds.r0y[b]) * bonds.constants.n0 / 2.0;
+    n += bond_math::weight(std::hypot(bonds.r0x[b], bonds.r0y[b]), bonds.geometry.re);
   EXPECT_NEAR(n, 6.539697, 1e-6);
   // 1130 particles in the paper's case; every bond stored from both ends.
   EXPECT_EQ(p.size(), 1130u);
@@ -43,6 +43,7 @@ TEST(BondTable, InteriorParticleHasTwelveBondsSummingToN0) {
 TEST(BondTable, IsSymmetricAndSorted) {
   Simulation sim(testing::rod_case());
   const BondTable& bonds = sim.state().bonds;
+  const PaperModel paper(sim.particles(), bonds, {});
   for (std::size_t i = 0; i < bonds.particle_count(); ++i)
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       if (b + 1 < bonds.end(i)) {
@@ -54,11 +55,11 @@ TEST(BondTable, IsSymmetricAndSorted) {
         if (bonds.neighbor[c] != i) continue;
         {
           found = true;
-          // r0_ji = -r0_ij and the constants agree, bit for bit.
+          // r0_ji = -r0_ij and the paper model's coefficients agree, bit for bit.
           EXPECT_EQ(bonds.r0x[c], -bonds.r0x[b]);
           EXPECT_EQ(bonds.r0y[c], -bonds.r0y[b]);
-          EXPECT_EQ(bonds.spring_coef[c], bonds.spring_coef[b]);
-          EXPECT_EQ(bonds.strain_coef[c], bonds.strain_coef[b]);
+          EXPECT_EQ(paper.spring_coefficients()[c], paper.spring_coefficients()[b]);
+          EXPECT_EQ(paper.strain_coefficients()[c], paper.strain_coefficients()[b]);
         }
       }
       EXPECT_TRUE(found) << i << " -> " << j << " has no reverse bond";
@@ -108,12 +109,13 @@ TEST(NeighborSearch, AgreeOnRandomClouds) {
 TEST(BondTable, SameFromEverySearch) {
   Simulation sim(testing::rod_case({"l0=0.001"}));
   const ParticleStore& p = sim.particles();
-  const KernelConstants k = sim.state().bonds.constants;
-  const BondTable cells = build_bonds(p, k, NeighborMethod::cell_list);
-  const BondTable tree = build_bonds(p, k, NeighborMethod::kdtree);
+  const BondGeometry g = sim.state().bonds.geometry;
+  const BondTable cells = build_bonds(p, g, NeighborMethod::cell_list);
+  const BondTable tree = build_bonds(p, g, NeighborMethod::kdtree);
   EXPECT_EQ(cells.hash(), tree.hash());
   EXPECT_EQ(cells.neighbor, tree.neighbor);
-  EXPECT_EQ(cells.spring_coef, tree.spring_coef);
+  EXPECT_EQ(cells.r0x, tree.r0x);
+  EXPECT_EQ(cells.r0y, tree.r0y);
 }
 
 }  // namespace

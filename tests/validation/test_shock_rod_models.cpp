@@ -31,7 +31,7 @@ double json_number(const std::string& json, const std::string& key) {
 TEST(ShockRod55kN, PaperModelIsStoppedAtTheInvertedCornerBond) {
   const auto dir = std::filesystem::temp_directory_path() / "mpsolid_test_paper55";
   std::filesystem::remove_all(dir);
-  const CaseSpec spec = read_case(testing::source_path("cases/shock_rod_55kN.toml"),
+  const CaseSpec spec = load_case(testing::source_path("cases/shock_rod_55kN.toml"),
                                   {"model=paper", "time.end=0.002", "output.frame_interval=1e-4"});
   RunOptions options;
   options.out_dir = dir;
@@ -63,7 +63,7 @@ TEST(ShockRod55kN, PaperModelIsStoppedAtTheInvertedCornerBond) {
 
 TEST(ShockRod55kN, FiniteStrainRunsThroughTheFirstMillisecond) {
   Simulation sim(
-      read_case(testing::source_path("cases/shock_rod_55kN.toml"), {"model=finite_strain"}));
+      load_case(testing::source_path("cases/shock_rod_55kN.toml"), {"model=finite_strain"}));
   for (int k = 0; k < 10; ++k) {
     sim.advance(10000);
     const StabilityVerdict v = sim.check_stability();

@@ -1,0 +1,41 @@
+#pragma once
+// What a bond model is (MODEL.md sections 2, 4b, 5, 7): a type the time step,
+// the diagnostics and the stable-step estimate are written once against.
+//
+// A model makes its own per-bond coefficients from the bond table's topology
+// and reference geometry at construction, reads its options from its own
+// case section (info().section, validated against info().options by the case
+// reader), and then runs two gather passes per step:
+//   compute_strain: position-dependent fields of every particle in `range`
+//     (strain, pressure and whatever the force pass needs);
+//   compute_forces: force and torque of the moving particles in `range`.
+// Each index writes only its own outputs, so any thread schedule gives the
+// same bits. A new model is one file in kernels/ and one line in
+// kernels/model_registry.hpp.
+#include <concepts>
+#include <cstddef>
+
+#include "kernels/model_common.hpp"
+#include "src/core/bonds.hpp"
+#include "src/core/option_table.hpp"
+#include "src/core/particle_store.hpp"
+
+namespace mpsolid {
+
+template <class M>
+concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleStore& cp,
+                             const BondTable& bonds, const OptionValues& options, Range range,
+                             std::size_t i, const IntegrityLimits& limits) {
+  { M::name } -> std::convertible_to<const char*>;
+  { M::uses_rotation } -> std::convertible_to<bool>;  // spins and half angles are integrated
+  { M::info() } -> std::same_as<ModelInfo>;           // name, case section, options table
+  M(cp, bonds, options);
+  m.compute_strain(p, bonds, range);
+  cm.compute_forces(p, bonds, range);
+  // The particle's share of the strain energy (needs a current strain pass).
+  { cm.particle_strain_energy(cp, bonds, i) } -> std::same_as<double>;
+  // The model's measure of a broken state (an inverted bond, a collapsed J).
+  { cm.check_integrity(cp, bonds, limits) } -> std::same_as<IntegrityReport>;
+};
+
+}  // namespace mpsolid

@@ -1,0 +1,61 @@
+#include "src/case/case_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "src/case/resolved_case.hpp"
+
+namespace mpsolid {
+
+std::int64_t CaseSpec::step_count() const {
+  // Nearest whole step when end is a multiple of dt up to round-off, else the
+  // first step at or past end.
+  const double ratio = end / dt;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
+    return static_cast<std::int64_t>(nearest);
+  return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+namespace {
+// Whole steps in `interval`: the nearest count when it is a multiple of dt up
+// to round-off, else rounded down; at least 1.
+std::int64_t steps_in(double interval, double dt) {
+  const double ratio = interval / dt;
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio))
+    return std::max<std::int64_t>(1, static_cast<std::int64_t>(nearest));
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
+}
+}  // namespace
+
+std::int64_t CaseSpec::steps_per_checkpoint() const {
+  return checkpoint_interval > 0 ? steps_in(checkpoint_interval, dt) : 0;
+}
+std::int64_t CaseSpec::steps_per_frame() const {
+  return steps_in(frame_interval, dt);
+}
+std::int64_t CaseSpec::steps_per_history() const {
+  return std::min(steps_per_frame(), steps_in(history_interval, dt));
+}
+
+void CaseSpec::set_auto_time_step(double limit, double omega_max) {
+  // The finest output interval becomes a whole number of steps, so outputs
+  // fall on the requested times whatever step is chosen.
+  const double finest = std::min(history_interval, frame_interval);
+  const double target = dt_safety * limit;
+  dt = finest / std::ceil(finest / target * (1.0 - 1e-12));
+  // The resolved case keeps the chosen step as a number, so a resumed run
+  // goes on with it rather than estimating again.
+  resolved_toml = fmt::format(
+      "# time.dt = \"auto\" chose {:.17g} s: the largest step <= safety {:.17g} x the model's\n"
+      "# stability limit 2 / omega_max = {:.17g} s (omega_max = {:.17g} rad/s) with whole steps\n"
+      "# per output.\n",
+      dt, dt_safety, limit, omega_max);
+  resolved_toml += resolved_case_toml(*this);
+  if (checkpoint_interval > 0) checkpoint_interval = std::max(checkpoint_interval, dt);
+}
+
+}  // namespace mpsolid

@@ -1,0 +1,102 @@
+#include "src/case/resolved_case.hpp"
+
+#include <fmt/format.h>
+
+#include <toml.hpp>
+
+#include "src/case/case_overrides.hpp"
+
+namespace mpsolid {
+
+namespace {
+std::string format_number(double x) {
+  return fmt::format("{:.17g}", x);
+}
+std::string quote(const std::string& text) {
+  return toml::format(TomlValue(text));
+}
+std::string key(const std::string& name) {
+  return toml::format_key(name);
+}
+
+const char* hold_name(Hold hold) {
+  return hold == Hold::x ? "x" : hold == Hold::y ? "y" : "none";
+}
+
+std::string body_toml(const CaseSpec& c, const BodySpec& b) {
+  std::string out = fmt::format(
+      "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\nx = [{}, {}]\ny = [{}, {}]\n", key(b.name),
+      kind_name(b.kind), quote(c.materials[static_cast<std::size_t>(b.material)].name),
+      format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
+  // Initial motion and holds only where set: walls accept none of them.
+  if (b.velocity[0] != 0 || b.velocity[1] != 0)
+    out += fmt::format("velocity = [{}, {}]\n", format_number(b.velocity[0]),
+                       format_number(b.velocity[1]));
+  if (b.spin != 0) out += fmt::format("spin = {}\n", format_number(b.spin));
+  if (b.hold != Hold::none) out += fmt::format("hold = \"{}\"\n", hold_name(b.hold));
+  if (b.has_mode)
+    out += fmt::format(
+        "\n[bodies.{}.bending_mode]\nroot_x = {}\nlength = {}\nkL = {}\ntip_velocity = {}\n",
+        key(b.name), format_number(b.mode.root_x), format_number(b.mode.length),
+        format_number(b.mode.kl), format_number(b.mode.tip_velocity));
+  return out;
+}
+
+std::string time_toml(const CaseSpec& c) {
+  if (c.dt_auto && c.dt == 0)
+    return fmt::format("\n[time]\ndt = \"auto\"\nsafety = {}\nend = {}\n",
+                       format_number(c.dt_safety), format_number(c.end));
+  return fmt::format("\n[time]\ndt = {}\nend = {}\n", format_number(c.dt), format_number(c.end));
+}
+
+// The chosen model's options section, every key written.
+std::string model_section_toml(const CaseSpec& c) {
+  if (c.model_section.empty()) return "";
+  std::string out = fmt::format("\n[{}]\n", key(c.model_section));
+  for (const auto& [name, value] : c.model_options.numbers)
+    out += fmt::format("{} = {}\n", key(name), format_number(value));
+  for (const auto& [name, value] : c.model_options.choices)
+    out += fmt::format("{} = {}\n", key(name), quote(value));
+  return out;
+}
+}  // namespace
+
+// Derived figures go in as comments.
+std::string resolved_case_toml(const CaseSpec& c) {
+  std::string out = fmt::format(
+      "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
+      c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", key(m.name),
+                       format_number(m.lambda()), format_number(m.mu()));
+  out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
+                     quote(c.model), format_number(c.l0), format_number(c.depth));
+  for (const auto& m : c.materials)
+    out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", key(m.name),
+                       format_number(m.youngs_modulus), format_number(m.poisson_ratio),
+                       format_number(m.density));
+  for (const auto& b : c.bodies) out += body_toml(c, b);
+  for (const auto& l : c.loads)
+    out +=
+        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = {}\nforce = [{}, {}]\nstart = {}\n",
+                    key(l.name), quote(c.bodies[static_cast<std::size_t>(l.body)].name),
+                    format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
+  for (const auto& probe : c.probes)
+    out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),
+                       format_number(probe.at[0]), format_number(probe.at[1]));
+  out += time_toml(c);
+  out += fmt::format("\n[output]\nframe_interval = {}\nhistory_interval = {}\n",
+                     format_number(c.frame_interval), format_number(c.history_interval));
+  out += fmt::format("checkpoint_interval = {}\ncompression = {}\n",
+                     format_number(c.checkpoint_interval), c.compression);
+  out += model_section_toml(c);
+  out += fmt::format(
+      "\n[stability]\ncheck_interval = {}\nmax_speed = {}\nmin_jacobian = {}\nenergy_tolerance = "
+      "{}\n",
+      c.stability.check_interval, format_number(c.stability.max_speed),
+      format_number(c.stability.min_jacobian), format_number(c.stability.energy_tolerance));
+  out += fmt::format("\n[numerics]\nflush_subnormals = {}\n", c.flush_subnormals);
+  return out;
+}
+
+}  // namespace mpsolid
