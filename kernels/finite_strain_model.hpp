@@ -38,8 +38,9 @@ class FiniteStrainModel {
  public:
   static constexpr const char* name = "finite_strain";
   static constexpr bool uses_rotation = false;
-  // Options in the case's [finite_strain] section.
-  static ModelInfo info() { return {name, name, hourglass_option_table()}; }
+  static constexpr bool rotation_invariant = true;
+  static constexpr const char* options_section = "finite_strain";
+  static std::vector<OptionSpec> options() { return hourglass_option_table(); }
 
   // Throws InputError if a particle's neighbourhood cannot define A_i^-1.
   FiniteStrainModel(const ParticleStore& p, const BondTable& bonds, const OptionValues& options);

@@ -4,7 +4,7 @@
 //
 // A model makes its own per-bond coefficients from the bond table's topology
 // and reference geometry at construction, reads its options from its own
-// case section (info().section, validated against info().options by the case
+// case section (options_section, validated against options() by the case
 // reader), and then runs two gather passes per step:
 //   compute_strain: position-dependent fields of every particle in `range`
 //     (strain, pressure and whatever the force pass needs);
@@ -27,8 +27,10 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
                              const BondTable& bonds, const OptionValues& options, Range range,
                              std::size_t i, const IntegrityLimits& limits) {
   { M::name } -> std::convertible_to<const char*>;
-  { M::uses_rotation } -> std::convertible_to<bool>;  // spins and half angles are integrated
-  { M::info() } -> std::same_as<ModelInfo>;           // name, case section, options table
+  { M::uses_rotation } -> std::convertible_to<bool>;       // spins and half angles are integrated
+  { M::rotation_invariant } -> std::convertible_to<bool>;  // a rigid rotation is stress-free
+  { M::options_section } -> std::convertible_to<const char*>;  // "" if it takes no options
+  { M::options() } -> std::same_as<std::vector<OptionSpec>>;   // that section's table
   M(cp, bonds, options);
   m.compute_strain(p, bonds, range);
   cm.compute_forces(p, bonds, range);

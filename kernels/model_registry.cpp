@@ -7,10 +7,16 @@
 namespace mpsolid {
 
 namespace {
+template <class Model>
+ModelInfo info_of() {
+  return {Model::name, Model::options_section, Model::options(), Model::uses_rotation,
+          Model::rotation_invariant};
+}
+
 template <std::size_t... K>
 std::vector<ModelInfo> catalog_of(std::index_sequence<K...>) {
   static_assert((BondModel<std::variant_alternative_t<K, AnyModel>> && ...));
-  return {std::variant_alternative_t<K, AnyModel>::info()...};
+  return {info_of<std::variant_alternative_t<K, AnyModel>>()...};
 }
 
 template <std::size_t K = 0>
@@ -36,6 +42,12 @@ std::vector<std::string> model_names() {
   std::vector<std::string> names;
   for (const ModelInfo& m : model_catalog()) names.push_back(m.name);
   return names;
+}
+
+const ModelInfo& model_info(const std::string& name) {
+  for (const ModelInfo& m : model_catalog())
+    if (m.name == name) return m;
+  throw InputError("unknown model '" + name + "'");
 }
 
 AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,

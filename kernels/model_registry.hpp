@@ -18,6 +18,8 @@ using AnyModel = std::variant<PaperModel, PaperConservativeModel, FiniteStrainMo
 const std::vector<ModelInfo>& model_catalog();
 // Their names, in the same order.
 std::vector<std::string> model_names();
+// The catalog entry of `name` (throws InputError for an unknown name).
+const ModelInfo& model_info(const std::string& name);
 
 // The model called `name`, its coefficients made for `bonds`; `options` are
 // its validated section (CaseSpec::model_options).

@@ -35,7 +35,9 @@ class PaperModelT {
  public:
   static constexpr const char* name = EnergyConsistent ? "paper_conservative" : "paper";
   static constexpr bool uses_rotation = true;
-  static ModelInfo info() { return {name, "", {}}; }
+  static constexpr bool rotation_invariant = true;
+  static constexpr const char* options_section = "";  // no options
+  static std::vector<OptionSpec> options() { return {}; }
 
   PaperModelT() = default;  // no bonds: only a placeholder to assign a model to
   // The per-bond coefficients (MODEL.md sections 2.3-2.4), mu_ij the

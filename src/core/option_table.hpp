@@ -24,12 +24,15 @@ struct OptionSpec {
   bool is_choice() const { return !choices.empty(); }
 };
 
-// One model as the case reader sees it: its name (`model = ...`), the case
-// section its options live in (empty: none) and that section's table.
+// One model as the case reader (and a test) sees it: its name (`model =
+// ...`), the case section its options live in (empty: none), that section's
+// table, and the traits that decide which checks apply to it.
 struct ModelInfo {
   std::string name;
   std::string section;
   std::vector<OptionSpec> options;
+  bool uses_rotation = false;       // particles carry a rotation (spins, torques)
+  bool rotation_invariant = false;  // a rigid rotation is stress-free (objective)
 };
 
 // Validated option values of one model, every key present (defaults filled).

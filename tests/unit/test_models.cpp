@@ -56,7 +56,7 @@ TEST(FiniteStrain, AffineDeformationGivesExactGradientEverywhere) {
     p.x[i] = 0.3 + f(0, 0) * p.x0[i] + f(0, 1) * p.y0[i];
     p.y[i] = -0.1 + f(1, 0) * p.x0[i] + f(1, 1) * p.y0[i];
   }
-  FiniteStrainModel model(p, sim.state().bonds, default_options(FiniteStrainModel::info().options));
+  FiniteStrainModel model(p, sim.state().bonds, default_options(FiniteStrainModel::options()));
   model.compute_strain(p, sim.state().bonds, p.all());
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (int k = 0; k < 4; ++k)
@@ -92,7 +92,7 @@ TEST_P(FiniteStrainForms, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case({"model=finite_strain"}));
   ParticleStore& p = sim.particles();
   jiggle(p, sim.spec().l0, 4, 0.0);
-  OptionValues options = default_options(FiniteStrainModel::info().options);
+  OptionValues options = default_options(FiniteStrainModel::options());
   options.numbers["hourglass"] = 1.0;
   options.choices["hourglass_form"] = consistent ? "consistent" : "frozen";
   FiniteStrainModel model(p, sim.state().bonds, options);
@@ -116,6 +116,8 @@ INSTANTIATE_TEST_SUITE_P(Hourglass, FiniteStrainForms, ::testing::Values(true, f
 class EveryModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryModel, RigidRotationIsForceFreeEverywhere) {
+  // A small-strain model is not objective: its own test bounds the error.
+  if (!model_info(GetParam()).rotation_invariant) GTEST_SKIP() << "not rotation invariant";
   for (double angle : {1.0, -2.2}) {
     Simulation sim(testing::free_block_case(8, 6, false, 1e-7, GetParam()));
     ParticleStore& p = sim.particles();
@@ -146,7 +148,7 @@ TEST_P(EveryModel, FreeBlockConservesMomentaWithARigidPlate) {
   for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {
     p.vx[i] = 0.5 * n(rng);
     p.vy[i] = 0.5 * n(rng);
-    if (GetParam() != "finite_strain") p.omega[i] = 200.0 * n(rng);
+    if (model_info(GetParam()).uses_rotation) p.omega[i] = 200.0 * n(rng);
   }
   const Diagnostics before = sim.diagnostics();
   // Relative to the momentum magnitude sum m |v|: the net momentum of random
@@ -175,8 +177,7 @@ TEST_P(EveryModel, DeterministicAcrossThreadCounts) {
   EXPECT_TRUE(testing::same_bits(results[0], results[1]));
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, EveryModel,
-                         ::testing::Values("paper", "paper_conservative", "finite_strain"));
+INSTANTIATE_TEST_SUITE_P(Models, EveryModel, ::testing::ValuesIn(model_names()));
 
 // A free block thrown into large deformation and rotation: the consistent
 // models keep KE + PE to O(dt); the paper model does not.
@@ -188,7 +189,7 @@ double energy_drift(const std::string& model, double dt, int steps) {
   for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {
     p.vx[i] = 2.0 * n(rng) - 0.1 * (p.y0[i] - 0.004) * 1e3;
     p.vy[i] = 2.0 * n(rng) + 0.1 * (p.x0[i] - 0.005) * 1e3;
-    if (model != "finite_strain") p.omega[i] = 100.0;
+    if (model_info(model).uses_rotation) p.omega[i] = 100.0;
   }
   const Diagnostics start = sim.diagnostics();
   const double e0 = start.kinetic_energy + start.strain_energy;
