@@ -11,6 +11,7 @@
 #include "bench/registry.hpp"
 #include "kernels/model_registry.hpp"
 #include "src/solver/simulation.hpp"
+#include "src/solver/step.hpp"
 
 namespace mpsolid::bench {
 namespace {
@@ -61,7 +62,7 @@ void run_kernel(benchmark::State& state, Kernel kernel, const std::string& model
             for (auto* v : {&p.fx, &p.fy, &p.torque}) std::fill(v->begin(), v->end(), 0.0);
             time_in_team(state, repeats, [&] {
               parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-                integrate_block<rot>(s, {b, e}, false);
+                integrate_block<rot>(s, sim.spec().dt, {b, e}, false);
               });
             });
             particles = static_cast<double>(p.moving().size());
@@ -70,7 +71,7 @@ void run_kernel(benchmark::State& state, Kernel kernel, const std::string& model
           case Kernel::rigid_bodies:
             time_in_team(state, repeats, [&] {
               parallel_for(0, s.rigid_bodies.size(), [&](std::size_t k) {
-                project_rigid_body(p, s.rigid_bodies[k], s.dt, rot);
+                project_rigid_body(p, s.rigid_bodies[k], sim.spec().dt, rot);
               });
             });
             particles = static_cast<double>(p.rigid.size());

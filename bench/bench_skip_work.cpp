@@ -18,6 +18,7 @@
 #include "bench/bench_support.hpp"
 #include "bench/registry.hpp"
 #include "src/solver/simulation.hpp"
+#include "src/solver/step.hpp"
 
 namespace mpsolid::bench {
 namespace {
@@ -49,7 +50,7 @@ void run_integrate(benchmark::State& state, long l0_um, bool rotation, int threa
   for (auto* v : {&p.fx, &p.fy, &p.torque}) std::fill(v->begin(), v->end(), 0.0);
   auto integrate = [&]<bool Rotation>() {
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      integrate_block<Rotation>(s, {b, e}, false);
+      integrate_block<Rotation>(s, sim.spec().dt, {b, e}, false);
     });
   };
   time_in_team(state, repeats_for(p.size()), [&] {

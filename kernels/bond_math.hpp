@@ -13,6 +13,8 @@
 // (with -ffp-contract=off).
 #include <cmath>
 
+#include "src/core/types.hpp"
+
 namespace mpsolid::bond_math {
 
 inline double weight(double r, double re) {
@@ -29,9 +31,7 @@ inline double lattice_number_density(double l0, double re) {
   return n0;
 }
 
-inline double cross(double ax, double ay, double bx, double by) {
-  return ax * by - ay * bx;
-}
+using ::mpsolid::cross;
 
 struct Rotation {
   double cos, sin;

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   cmake g++ make git
   libeigen3-dev libnanoflann-dev libhdf5-dev libgtest-dev libbenchmark-dev
-  libtoml11-dev libcli11-dev libfmt-dev
+  libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev clang-format
   python3 python3-h5py python3-matplotlib
 )
 missing=()

@@ -47,26 +47,32 @@ std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
   return text;
 }
 
-std::string failure_json(const Simulation& sim, const StabilityVerdict& v,
-                         std::int64_t last_good_step) {
+Json failure_json(const Simulation& sim, const StabilityVerdict& v, std::int64_t last_good_step) {
   const ParticleStore& p = sim.particles();
   const std::size_t i = v.particle;
-  return fmt::format(
-      "{{\"criterion\": {}, \"time\": {:.17g}, \"step\": {}, \"particle_id\": {}, "
-      "\"body\": {}, \"initial_position\": [{:.17g}, {:.17g}], \"position\": [{:.17g}, "
-      "{:.17g}], \"neighbor_id\": {}, \"value\": {:.17g}, \"last_good_step\": {}, "
-      "\"last_good_time\": {:.17g}}}",
-      json_quoted(v.criterion), sim.time(), sim.step(), p.id[i], json_quoted(body_of(sim, i)),
-      p.x0[i], p.y0[i], p.x[i], p.y[i], v.has_neighbor ? std::to_string(p.id[v.neighbor]) : "null",
-      v.value, last_good_step, static_cast<double>(last_good_step) * sim.spec().dt);
+  return {{"criterion", v.criterion},
+          {"time", sim.time()},
+          {"step", sim.step()},
+          {"particle_id", p.id[i]},
+          {"body", body_of(sim, i)},
+          {"initial_position", {p.x0[i], p.y0[i]}},
+          {"position", {p.x[i], p.y[i]}},
+          {"neighbor_id", v.has_neighbor ? Json(p.id[v.neighbor]) : Json(nullptr)},
+          {"value", v.value},
+          {"last_good_step", last_good_step},
+          {"last_good_time", sim.spec().time_at(last_good_step)}};
+}
+
+RunReportInputs report_inputs(const Simulation& sim) {
+  return {sim.spec(), sim.state(), sim.timers(), sim.stable_step()};
 }
 
 void print_summary(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {
   const double rate =
       facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0;
   fmt::print("mpsolid: {} ({} model) {}: {} steps to t = {:.6g} s in {:.3g} s wall, {} threads\n",
-             sim.spec().name, sim.spec().model, facts.outcome, facts.steps, sim.time(),
-             facts.wall_seconds, facts.threads);
+             sim.spec().name, sim.spec().model, outcome_name(facts.outcome), facts.steps,
+             sim.time(), facts.wall_seconds, facts.threads);
   fmt::print("  {} particles, {} bonds; {:.4g} steps/s, {:.4g} particle-steps/s\n",
              sim.particles().size(), sim.state().bonds.entry_count() / 2, rate,
              rate * static_cast<double>(sim.particles().size()));
@@ -98,7 +104,7 @@ std::int64_t next_on_cadence(std::int64_t step, std::int64_t every) {
 // The loop with outputs, from the state in `sim` (set up, or restored from a
 // checkpoint) to the end of the case, a stop signal or a blow-up. `fresh`:
 // the run starts at step 0 and writes its first frame and checkpoint.
-int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOptions& options,
+int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
              bool fresh) {
   const CaseSpec& spec = sim.spec();
   const auto wall_start = facts.started;
@@ -107,15 +113,15 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
   std::int64_t last_frame_step = -1;
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(sim, d);
+    outputs.write_frame(sim.state(), sim.spec(), d);
     last_frame_step = sim.step();
   };
   // A checkpoint of the current state; the segment is "interrupted" in it
   // unless it is the run's last.
-  auto checkpoint = [&](const std::string& outcome) {
+  auto checkpoint = [&](Outcome outcome) {
     RunFacts now = facts;
     now.outcome = outcome;
-    outputs.checkpoint(sim, now);
+    outputs.checkpoint(report_inputs(sim), now);
   };
 
   const std::int64_t total = spec.step_count();
@@ -131,7 +137,7 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
   Progress progress(total, spec.dt, options.progress);
   if (fresh) {
     write_frame(sim.diagnostics());
-    checkpoint("interrupted");
+    checkpoint(Outcome::interrupted);
   }
   StateSnapshot last_good = StateSnapshot::capture(sim.state());
   while (sim.step() < total) {
@@ -147,7 +153,7 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
     const StabilityVerdict verdict = sim.check_stability(&d);
     if (!verdict.ok) {
       progress.finish();
-      facts.outcome = "unstable";
+      facts.outcome = Outcome::unstable;
       facts.diagnosis = describe_failure(sim, verdict, last_good.step);
       facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
       // Keep the last good state as the final frame of the outputs.
@@ -159,14 +165,15 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
     if (sim.step() == next_frame) write_frame(d);
     if (sim.step() % history_every == 0) {
       auto t = sim.timers().time(Phase::output);
-      outputs.write_history(sim, d);
+      outputs.write_history(sim.state(), sim.spec(), d);
     }
     if (sim.step() == total) break;
     if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0 &&
         sim.step() > outputs.last_checkpoint_step())
-      checkpoint("interrupted");
+      checkpoint(Outcome::interrupted);
     if (stop_requested()) {
-      facts.outcome = fmt::format("stopped by {}", stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT");
+      facts.outcome =
+          stop_signal() == SIGTERM ? Outcome::stopped_by_sigterm : Outcome::stopped_by_sigint;
       break;
     }
   }
@@ -180,22 +187,22 @@ int run_loop(Simulation& sim, RunOutputs& outputs, RunFacts& facts, const RunOpt
     outputs.publish();
   }
   // The last checkpoint of the run; an unstable state is not one to go on from.
-  if (facts.outcome != "unstable") checkpoint(facts.outcome);
+  if (facts.outcome != Outcome::unstable) checkpoint(facts.outcome);
   outputs.fill(facts);
   facts.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   write_file_atomically(options.out_dir / "run.json",
-                        run_report_json(sim, facts, outputs.previous_segments()));
+                        run_report_json(report_inputs(sim), facts, outputs.previous_segments()));
   print_summary(sim, facts, options);
-  if (facts.outcome.rfind("stopped", 0) == 0) {
+  if (stopped_by_signal(facts.outcome)) {
     fmt::print(stderr,
                "mpsolid: {} at t = {:.6g} s (step {}); checkpoint and outputs are in {}. Continue "
                "with: mpsolid resume {}\n",
-               facts.outcome, sim.time(), sim.step(), options.out_dir.string(),
+               outcome_name(facts.outcome), sim.time(), sim.step(), options.out_dir.string(),
                options.out_dir.string());
     return kExitStopped;
   }
-  if (facts.outcome == "unstable") {
+  if (facts.outcome == Outcome::unstable) {
     fmt::print(stderr,
                "mpsolid: unstable: {}\n  The last good state (t = {:.6g} s) is the last "
                "frame of {} and {}.\n",
@@ -217,12 +224,12 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   facts.command_line = options.command_line;
   facts.threads = thread_count();
   Simulation sim(spec);
-  RunOutputs outputs(options.out_dir, sim);
+  RunFolder outputs(options.out_dir, sim.state(), sim.spec());
   return run_loop(sim, outputs, facts, options, true);
 }
 
 int resume_run(const std::vector<std::string>& overrides, const RunOptions& options) {
-  const std::filesystem::path path = RunOutputs::checkpoint_path(options.out_dir);
+  const std::filesystem::path path = RunFolder::checkpoint_path(options.out_dir);
   for (const std::string& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
     if (std::find(kResumeKeys.begin(), kResumeKeys.end(), key) == kResumeKeys.end())
@@ -249,14 +256,14 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   facts.threads = thread_count();
   facts.start_step = checkpoint.step;
   Simulation sim(spec);
-  restore_state(sim, checkpoint, path.string());
+  restore_state(sim.state(), checkpoint, path.string());
   const auto clean_up = [&] {
     for (const char* name : {"history.csv", "frames.h5"})
       std::filesystem::remove(staging_path(options.out_dir / name));
   };
-  std::optional<RunOutputs> outputs;
+  std::optional<RunFolder> outputs;
   try {
-    outputs.emplace(options.out_dir, sim, checkpoint);
+    outputs.emplace(options.out_dir, sim.state(), sim.spec(), checkpoint);
   } catch (const InputError&) {
     clean_up();  // a refused resume leaves the folder as it was
     throw;

@@ -97,6 +97,7 @@ struct CaseSpec {
   bool flush_subnormals = false;
   std::string resolved_toml;  // the case with every default and override filled in
 
+  double time_at(std::int64_t step) const { return static_cast<double>(step) * dt; }
   std::int64_t step_count() const;            // steps to reach `end`
   std::int64_t steps_per_frame() const;       // output cadence in steps
   std::int64_t steps_per_history() const;     // history.csv cadence in steps

@@ -11,9 +11,9 @@ Diagnostics motion_diagnostics(const ParticleStore& p) {
     const double m = 1.0 / p.inv_mass[i];
     const double inertia = 1.0 / p.inv_inertia[i];
     const double v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
-    return std::array<double, 4>{0.5 * m * v2 + 0.5 * inertia * p.omega[i] * p.omega[i],
-                                 m * p.vx[i], m * p.vy[i],
-                                 m * (p.x[i] * p.vy[i] - p.y[i] * p.vx[i]) + inertia * p.omega[i]};
+    return std::array<double, 4>{
+        0.5 * m * v2 + 0.5 * inertia * p.omega[i] * p.omega[i], m * p.vx[i], m * p.vy[i],
+        m * cross(p.x[i], p.y[i], p.vx[i], p.vy[i]) + inertia * p.omega[i]};
   });
   Diagnostics d;
   d.kinetic_energy = sums[0];

@@ -1,7 +1,7 @@
 #pragma once
 // Whole-system figures at a frame: energies (MODEL.md section 4b), momenta
 // (about the origin, spins included) and the largest speed.
-#include "src/solver/step.hpp"
+#include "src/core/solver_state.hpp"
 
 namespace mpsolid {
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "kernels/bond_math.hpp"
 #include "src/core/half_angles.hpp"
 #include "src/core/ordered_sum.hpp"
 #include "src/core/parallel.hpp"
@@ -45,7 +44,7 @@ void project_rigid_body(ParticleStore& p, RigidBody& body, double dt, bool with_
     const double spin = with_rotation ? p.omega[i] / p.inv_inertia[i] : 0.0;
     return std::array<double, 3>{
         m * p.vx[i], m * p.vy[i],
-        m * bond_math::cross(p.x[i] - body.xg, p.y[i] - body.yg, p.vx[i], p.vy[i]) + spin};
+        m * cross(p.x[i] - body.xg, p.y[i] - body.yg, p.vx[i], p.vy[i]) + spin};
   });
   body.vx = px / body.mass_total;
   body.vy = py / body.mass_total;

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "src/solver/step.hpp"
+#include "src/core/solver_state.hpp"
 
 namespace mpsolid {
 

@@ -9,6 +9,11 @@ namespace mpsolid {
 // Spatial dimension: the solver is 2D plane strain (MODEL.md section 1).
 inline constexpr int kDim = 2;
 
+// The z component of a x b for in-plane vectors (torques, angular momenta).
+inline double cross(double ax, double ay, double bx, double by) {
+  return ax * by - ay * bx;
+}
+
 // Kind of a particle. Storage is grouped in this order: [wall | elastic | rigid].
 enum class Kind : std::int8_t { wall = 0, elastic = 1, rigid = 2 };
 

@@ -12,13 +12,16 @@
 namespace mpsolid {
 
 namespace {
-void sync_file(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0)
+std::filesystem::path folder_of(const std::filesystem::path& path) {
+  return path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+}
+
+void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec)
     throw std::runtime_error(
-        fmt::format("cannot open {}: {}", path.string(), std::strerror(errno)));
-  ::fsync(fd);
-  ::close(fd);
+        fmt::format("cannot rename {} to {}: {}", from.string(), to.string(), ec.message()));
 }
 }  // namespace
 
@@ -26,14 +29,24 @@ std::filesystem::path staging_path(const std::filesystem::path& path) {
   return path.parent_path() / (path.filename().string() + ".tmp");
 }
 
+void sync_path(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+    throw std::runtime_error(
+        fmt::format("cannot open {}: {}", path.string(), std::strerror(errno)));
+  const int status = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (status != 0 && error != EINVAL)
+    throw std::runtime_error(
+        fmt::format("cannot sync {}: {}", path.string(), std::strerror(error)));
+}
+
 void publish_staged_file(const std::filesystem::path& path) {
   const auto staged = staging_path(path);
-  sync_file(staged);
-  std::error_code ec;
-  std::filesystem::rename(staged, path, ec);
-  if (ec)
-    throw std::runtime_error(
-        fmt::format("cannot rename {} to {}: {}", staged.string(), path.string(), ec.message()));
+  sync_path(staged);
+  rename_or_throw(staged, path);
+  sync_path(folder_of(path));
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& content) {
@@ -45,6 +58,20 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
       throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
   }
   publish_staged_file(path);
+}
+
+void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to) {
+  const std::filesystem::path temporary =
+      to.parent_path() / (to.filename().string() + copy_path_suffix());
+  std::error_code ec;
+  std::filesystem::copy_file(from, temporary, std::filesystem::copy_options::overwrite_existing,
+                             ec);
+  if (ec)
+    throw std::runtime_error(
+        fmt::format("cannot copy {} to {}: {}", from.string(), temporary.string(), ec.message()));
+  sync_path(temporary);
+  rename_or_throw(temporary, to);
+  sync_path(folder_of(to));
 }
 
 }  // namespace mpsolid

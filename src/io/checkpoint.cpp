@@ -8,7 +8,6 @@
 #include "build_info.hpp"
 #include "src/core/hash.hpp"
 #include "src/io/atomic_file.hpp"
-#include "src/io/file_snapshot.hpp"
 #include "src/io/hdf5_file.hpp"
 
 namespace mpsolid {
@@ -62,27 +61,26 @@ std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
   return arrays;
 }
 
-Checkpoint capture_state(Simulation& sim) {
+Checkpoint capture_state(const SolverState& state) {
   Checkpoint c;
-  c.step = sim.step();
-  c.peak_work = sim.state().peak_work;
-  ParticleStore& p = sim.particles();
+  c.step = state.step;
+  c.peak_work = state.peak_work;
+  const ParticleStore& p = state.particles;
   const std::vector<std::size_t> order = p.storage_of_id();
-  for (const NamedArray& a : particle_state_arrays(p)) {
+  for (const StateArray& a : kStateArrays) {
+    const std::vector<double>& values = p.*a.member;
     std::vector<double> by_id(p.size());
-    for (std::size_t k = 0; k < p.size(); ++k) by_id[k] = (*a.values)[order[k]];
+    for (std::size_t k = 0; k < p.size(); ++k) by_id[k] = values[order[k]];
     c.particle_arrays.emplace_back(a.name, std::move(by_id));
   }
-  for (const RigidBody& b : sim.state().rigid_bodies)
+  for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
-  for (const StepLoad& l : sim.state().loads)
-    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on});
+  for (const StepLoad& l : state.loads) c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on});
   return c;
 }
 
-void restore_state(Simulation& sim, const Checkpoint& c, const std::string& source) {
-  ParticleStore& p = sim.particles();
-  SolverState& s = sim.state();
+void restore_state(SolverState& s, const Checkpoint& c, const std::string& source) {
+  ParticleStore& p = s.particles;
   auto refuse = [&](const std::string& why) {
     throw InputError(fmt::format("{}: the checkpoint does not fit this case: {}", source, why));
   };
@@ -194,8 +192,7 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     file.close();
   }
   const std::uintmax_t bytes = std::filesystem::file_size(staged);
-  publish_staged_file(path);  // fsync, rename
-  sync_path(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path());
+  publish_staged_file(path);
   return bytes;
 }
 

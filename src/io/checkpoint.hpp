@@ -12,7 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "src/solver/simulation.hpp"
+#include "src/case/case_spec.hpp"
+#include "src/core/solver_state.hpp"
 
 namespace mpsolid {
 
@@ -51,13 +52,13 @@ struct Checkpoint {
   std::vector<LoadState> loads;
 };
 
-// The evolving state of `sim` and its step (the other fields are left empty).
-Checkpoint capture_state(Simulation& sim);
+// The evolving state and its step (the other fields are left empty).
+Checkpoint capture_state(const SolverState& state);
 
-// Overwrites the state of a freshly set-up `sim` with the checkpoint's.
+// Overwrites a freshly set-up state with the checkpoint's.
 // Throws InputError, naming `source`, if the checkpoint does not fit: other
 // particle count, state arrays, bodies or loads, or another bond table.
-void restore_state(Simulation& sim, const Checkpoint& c, const std::string& source);
+void restore_state(SolverState& state, const Checkpoint& c, const std::string& source);
 
 // Writes `path` atomically: `path`.tmp, fsync, rename, fsync of the folder.
 // Returns the bytes written.

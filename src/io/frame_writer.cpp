@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "src/io/atomic_file.hpp"
-#include "src/io/file_snapshot.hpp"
 #include "src/io/hdf5_file.hpp"
 
 namespace mpsolid {
@@ -41,31 +40,31 @@ std::filesystem::path sidecar_path(const std::filesystem::path& path) {
 }
 }  // namespace
 
-FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
-                         std::uint64_t run_id)
+FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& state,
+                         const CaseSpec& spec, std::uint64_t run_id)
     : path_(path),
       file_(std::make_unique<File>()),
-      compression_(compression),
-      particles_(sim.particles().size()) {
+      compression_(spec.compression),
+      particles_(state.particles.size()) {
   file_->file = h5::File::create(staging_path(path));
   file_->frames = file_->file.create_group("frames");
-  file_->storage_of_id = sim.particles().storage_of_id();
+  file_->storage_of_id = state.particles.storage_of_id();
   std::vector<std::string> bodies;
-  for (const auto& b : sim.spec().bodies) bodies.push_back(b.name);
+  for (const auto& b : spec.bodies) bodies.push_back(b.name);
   file_->file.write_strings("body_names", bodies);
   file_->file.write_strings("kind_names", {"wall", "elastic", "rigid"});
-  file_->file.set_attribute<double>("l0", sim.spec().l0);
-  file_->file.set_attribute<double>("depth", sim.spec().depth);
+  file_->file.set_attribute<double>("l0", spec.l0);
+  file_->file.set_attribute<double>("depth", spec.depth);
   file_->file.set_attribute<std::int64_t>("particles", static_cast<std::int64_t>(particles_));
   file_->file.set_attribute<std::uint64_t>("run_id", run_id);
 }
 
-FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
-                         std::uint64_t run_id, int keep_frames)
+FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& state,
+                         const CaseSpec& spec, std::uint64_t run_id, int keep_frames)
     : path_(path),
       file_(std::make_unique<File>()),
-      compression_(compression),
-      particles_(sim.particles().size()) {
+      compression_(spec.compression),
+      particles_(state.particles.size()) {
   const std::filesystem::path staged = staging_path(path);
   if (!std::filesystem::exists(path))
     throw InputError(
@@ -96,7 +95,7 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const Simulation& si
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: cannot continue it: {}", path.string(), e.what()));
   }
-  file_->storage_of_id = sim.particles().storage_of_id();
+  file_->storage_of_id = state.particles.storage_of_id();
   first_frame_ = keep_frames;
   start_bytes_ = file_->file.size();
 }
@@ -114,13 +113,13 @@ std::uint64_t frames_run_id(const std::filesystem::path& path) {
   }
 }
 
-void FrameWriter::write(const Simulation& sim) {
-  const ParticleStore& p = sim.particles();
+void FrameWriter::write(const SolverState& state, const CaseSpec& spec) {
+  const ParticleStore& p = state.particles;
   const auto& order = file_->storage_of_id;
   const int index = frames_total();
   const h5::Group group = file_->frames.create_group(frame_group(index));
-  group.set_attribute<std::int64_t>("step", sim.step());
-  group.set_attribute<double>("time", sim.time());
+  group.set_attribute<std::int64_t>("step", state.step);
+  group.set_attribute<double>("time", spec.time_at(state.step));
 
   const std::size_t n = p.size();
   auto gather = [&](const std::vector<double>& field) {
@@ -154,7 +153,7 @@ void FrameWriter::write(const Simulation& sim) {
   group.write("volumetric_strain", gather(p.strain), 1, level);
   group.write("pressure", gather(p.pressure), 1, level);
   file_->file.flush();  // a crashed run keeps its frames in the staging file
-  frames_.push_back({"/frames/" + frame_group(index), sim.time()});
+  frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
 }
 
 std::uintmax_t FrameWriter::bytes_written() const {
@@ -167,7 +166,7 @@ void FrameWriter::write_sidecar() const {
                                                            frames_, frame_fields()));
 }
 
-void FrameWriter::snapshot() {
+void FrameWriter::publish_copy() {
   file_->file.flush();
   copy_file_atomically(staging_path(path_), path_);
   write_sidecar();

@@ -6,30 +6,31 @@
 #include <memory>
 #include <vector>
 
+#include "src/case/case_spec.hpp"
+#include "src/core/solver_state.hpp"
 #include "src/io/xdmf_writer.hpp"
-#include "src/solver/simulation.hpp"
 
 namespace mpsolid {
 
 class FrameWriter {
  public:
   // A new file, written to a staging file; publish() renames it to `path`.
-  // `compression`: deflate level 0 (off) to 9. `run_id` ties it to its checkpoints.
-  FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+  // Deflate level spec.compression (0: off, to 9). `run_id` ties it to its checkpoints.
+  FrameWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec,
               std::uint64_t run_id);
   // A resumed run: continues the published file at `path` from its first
   // `keep_frames` frames (later ones are dropped). Throws InputError if that
   // file is missing, belongs to another run or has fewer frames.
-  FrameWriter(const std::filesystem::path& path, const Simulation& sim, int compression,
+  FrameWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec,
               std::uint64_t run_id, int keep_frames);
   ~FrameWriter();
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
   // The current state (fields must be refreshed) as the next frame.
-  void write(const Simulation& sim);
+  void write(const SolverState& state, const CaseSpec& spec);
   // Publishes a copy of the file as it is now (and the sidecar); writing goes on.
-  void snapshot();
+  void publish_copy();
   // Closes the file and renames it to `path`; writes the sidecar.
   void publish();
   int frames_written() const { return frames_total() - first_frame_; }   // by this writer

@@ -7,64 +7,66 @@
 #include <stdexcept>
 
 #include "src/io/atomic_file.hpp"
-#include "src/io/file_snapshot.hpp"
 
 namespace mpsolid {
 
-std::vector<std::string> history_columns(const Simulation& sim) {
+std::vector<std::string> history_columns(const SolverState& state, const CaseSpec& spec) {
   std::vector<std::string> cols = {
       "t",          "kinetic_energy", "strain_energy",    "external_work",
       "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
-  for (const RigidBody& b : sim.state().rigid_bodies)
+  for (const RigidBody& b : state.rigid_bodies)
     for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
-  for (const BodySpec& b : sim.spec().bodies)
+  for (const BodySpec& b : spec.bodies)
     if (b.kind == Kind::elastic)
       for (const char* suffix : {".xmin", ".xmax", ".ymin", ".ymax"})
         cols.push_back(b.name + suffix);
-  for (const ProbeSpec& probe : sim.spec().probes)
+  for (const ProbeSpec& probe : spec.probes)
     for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
   return cols;
 }
 
-std::vector<double> history_row(const Simulation& sim, const Diagnostics& d) {
-  std::vector<double> row = {sim.time(),   d.kinetic_energy, d.strain_energy,    d.external_work,
-                             d.momentum_x, d.momentum_y,     d.angular_momentum, d.max_speed};
-  for (const RigidBody& b : sim.state().rigid_bodies) {
+std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
+                                const Diagnostics& d) {
+  std::vector<double> row = {spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
+                             d.external_work,          d.momentum_x,     d.momentum_y,
+                             d.angular_momentum,       d.max_speed};
+  for (const RigidBody& b : state.rigid_bodies) {
     row.push_back(b.xg - b.xg0);
     row.push_back(b.yg - b.yg0);
     row.push_back(b.angle);
   }
-  const ParticleStore& p = sim.particles();
-  for (std::size_t b = 0; b < sim.spec().bodies.size(); ++b) {
-    if (sim.spec().bodies[b].kind != Kind::elastic) continue;
-    const Range r = sim.body_ranges()[b];
+  const ParticleStore& p = state.particles;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    if (spec.bodies[b].kind != Kind::elastic) continue;
+    const Range r = state.body_ranges[b];
     const auto [xmin, xmax] = std::minmax_element(p.x.begin() + r.begin, p.x.begin() + r.end);
     const auto [ymin, ymax] = std::minmax_element(p.y.begin() + r.begin, p.y.begin() + r.end);
     row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
   }
-  for (const std::size_t i : sim.probe_particles()) row.insert(row.end(), {p.x[i], p.y[i]});
+  for (const std::size_t i : state.probes) row.insert(row.end(), {p.x[i], p.y[i]});
   return row;
 }
 
 namespace {
-std::string header_line(const Simulation& sim) {
+std::string header_line(const SolverState& state, const CaseSpec& spec) {
   std::string header;
-  for (const auto& c : history_columns(sim)) header += (header.empty() ? "" : ",") + c;
+  for (const auto& c : history_columns(state, spec)) header += (header.empty() ? "" : ",") + c;
   return header + '\n';
 }
 }  // namespace
 
-HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim)
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, const SolverState& state,
+                             const CaseSpec& spec)
     : path_(path) {
   file_ = std::fopen(staging_path(path).c_str(), "w");
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
-  const std::string header = header_line(sim);
+  const std::string header = header_line(state, spec);
   bytes_ += std::fwrite(header.data(), 1, header.size(), file_);
   file_bytes_ = bytes_;
 }
 
-HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation& sim,
-                             std::uintmax_t keep_bytes)
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, const SolverState& state,
+                             const CaseSpec& spec, std::uintmax_t keep_bytes)
     : path_(path) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
@@ -78,7 +80,7 @@ HistoryWriter::HistoryWriter(const std::filesystem::path& path, const Simulation
   std::filesystem::resize_file(staging_path(path), keep_bytes);
   file_ = std::fopen(staging_path(path).c_str(), "r+");
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", staging_path(path).string()));
-  const std::string header = header_line(sim);
+  const std::string header = header_line(state, spec);
   std::string start(header.size(), '\0');
   const std::size_t got = std::fread(start.data(), 1, start.size(), file_);
   char last = '\0';
@@ -97,9 +99,9 @@ HistoryWriter::~HistoryWriter() {
   if (file_) std::fclose(file_);
 }
 
-void HistoryWriter::write(const Simulation& sim, const Diagnostics& d) {
+void HistoryWriter::write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d) {
   std::string line;
-  for (double v : history_row(sim, d)) {
+  for (double v : history_row(state, spec, d)) {
     if (!line.empty()) line += ',';
     line += fmt::format("{:.17g}", v);
   }
@@ -112,7 +114,7 @@ void HistoryWriter::write(const Simulation& sim, const Diagnostics& d) {
     throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
 }
 
-void HistoryWriter::snapshot() {
+void HistoryWriter::publish_copy() {
   if (std::fflush(file_) != 0)
     throw std::runtime_error(fmt::format("cannot write {}", staging_path(path_).string()));
   copy_file_atomically(staging_path(path_), path_);

@@ -6,33 +6,35 @@
 #include <string>
 #include <vector>
 
+#include "src/case/case_spec.hpp"
 #include "src/core/diagnostics.hpp"
-#include "src/solver/simulation.hpp"
+#include "src/core/solver_state.hpp"
 
 namespace mpsolid {
 
 // Column names for a case: the fixed diagnostics, then per rigid body
 // B.x, B.y, B.theta, then per elastic body B.xmin, B.xmax, B.ymin, B.ymax,
 // then per probe probe.NAME.x, probe.NAME.y (current position).
-std::vector<std::string> history_columns(const Simulation& sim);
-std::vector<double> history_row(const Simulation& sim, const Diagnostics& d);
+std::vector<std::string> history_columns(const SolverState& state, const CaseSpec& spec);
+std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
+                                const Diagnostics& d);
 
 class HistoryWriter {
  public:
   // Writes to a staging file; publish() renames it to `path`.
-  HistoryWriter(const std::filesystem::path& path, const Simulation& sim);
+  HistoryWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec);
   // A resumed run: continues the published file at `path` from its first
   // `keep_bytes` bytes (later rows are dropped). Throws InputError if that
   // file is missing, shorter or has other columns.
-  HistoryWriter(const std::filesystem::path& path, const Simulation& sim,
+  HistoryWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec,
                 std::uintmax_t keep_bytes);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
-  void write(const Simulation& sim, const Diagnostics& d);
+  void write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
   // Publishes a copy of the file as it is now; writing goes on.
-  void snapshot();
+  void publish_copy();
   void publish();
   std::uintmax_t bytes_written() const { return bytes_; }    // by this writer
   std::uintmax_t file_bytes() const { return file_bytes_; }  // in the file, header included

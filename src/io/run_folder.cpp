@@ -23,15 +23,16 @@ std::uint64_t new_run_id() {
 
 // Temporary files a killed process may have left behind.
 void remove_leftovers(const std::filesystem::path& dir) {
-  for (const char* name : {"checkpoint.h5.tmp", "history.csv.snapshot.tmp",
-                           "frames.h5.snapshot.tmp", "frames.xdmf.tmp", "run.json.tmp"})
-    std::filesystem::remove(dir / name);
+  for (const char* name : {"checkpoint.h5", "frames.xdmf", "run.json"})
+    std::filesystem::remove(staging_path(dir / name));
+  for (const char* name : {"history.csv", "frames.h5"})
+    std::filesystem::remove(dir / (std::string(name) + copy_path_suffix()));
 }
 
 // Removes an old checkpoint before anything else of a fresh run is written.
 const std::filesystem::path& prepare_fresh(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
-  std::filesystem::remove(RunOutputs::checkpoint_path(dir));
+  std::filesystem::remove(RunFolder::checkpoint_path(dir));
   remove_leftovers(dir);
   return dir;
 }
@@ -44,49 +45,50 @@ const std::filesystem::path& check_same_run(const std::filesystem::path& dir,
     throw InputError(
         fmt::format("{} belongs to another run than {} (run id {:016x}, the frames' is {:016x}): a "
                     "checkpoint from a different run or case",
-                    RunOutputs::checkpoint_path(dir).string(), (dir / "frames.h5").string(),
+                    RunFolder::checkpoint_path(dir).string(), (dir / "frames.h5").string(),
                     from.run_id, outputs_run));
   return dir;
 }
 }  // namespace
 
-RunOutputs::RunOutputs(const std::filesystem::path& dir, const Simulation& sim)
+RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
+                     const CaseSpec& spec)
     : dir_(prepare_fresh(dir)),
       run_id_(new_run_id()),
-      bond_hash_(sim.state().bonds.hash()),
-      history_(dir / "history.csv", sim),
-      frames_(dir / "frames.h5", sim, sim.spec().compression, run_id_) {
-  write_file_atomically(dir / "case.resolved.toml", sim.spec().resolved_toml);
+      bond_hash_(state.bonds.hash()),
+      history_(dir / "history.csv", state, spec),
+      frames_(dir / "frames.h5", state, spec, run_id_) {
+  write_file_atomically(dir / "case.resolved.toml", spec.resolved_toml);
 }
 
-RunOutputs::RunOutputs(const std::filesystem::path& dir, const Simulation& sim,
-                       const Checkpoint& from)
+RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
+                     const CaseSpec& spec, const Checkpoint& from)
     : dir_(check_same_run(dir, from)),
       run_id_(from.run_id),
       bond_hash_(from.bond_hash),
-      history_(dir / "history.csv", sim, from.history_bytes),
-      frames_(dir / "frames.h5", sim, sim.spec().compression, run_id_,
-              static_cast<int>(from.frames)),
+      history_(dir / "history.csv", state, spec, from.history_bytes),
+      frames_(dir / "frames.h5", state, spec, run_id_, static_cast<int>(from.frames)),
       previous_segments_(from.segments),
       last_checkpoint_step_(from.step),
       last_frame_step_(-1) {
   remove_leftovers(dir);
-  write_file_atomically(dir / "case.resolved.toml", sim.spec().resolved_toml);
+  write_file_atomically(dir / "case.resolved.toml", spec.resolved_toml);
 }
 
-void RunOutputs::write_history(const Simulation& sim, const Diagnostics& d) {
-  if (sim.step() == last_history_step_) return;
-  history_.write(sim, d);
-  last_history_step_ = sim.step();
+void RunFolder::write_history(const SolverState& state, const CaseSpec& spec,
+                              const Diagnostics& d) {
+  if (state.step == last_history_step_) return;
+  history_.write(state, spec, d);
+  last_history_step_ = state.step;
 }
 
-void RunOutputs::write_frame(const Simulation& sim, const Diagnostics& d) {
-  write_history(sim, d);
-  frames_.write(sim);
-  last_frame_step_ = sim.step();
+void RunFolder::write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d) {
+  write_history(state, spec, d);
+  frames_.write(state, spec);
+  last_frame_step_ = state.step;
 }
 
-void RunOutputs::fill(RunFacts& facts) const {
+void RunFolder::fill(RunFacts& facts) const {
   facts.frames = frames_.frames_written();
   facts.bytes_written = history_.bytes_written() + frames_.bytes_written();
   facts.checkpoints = checkpoints_;
@@ -94,14 +96,16 @@ void RunOutputs::fill(RunFacts& facts) const {
   facts.checkpoint_seconds = checkpoint_seconds_;
 }
 
-void RunOutputs::checkpoint(Simulation& sim, RunFacts facts) {
+void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts) {
+  const SolverState& state = in.state;
+  const CaseSpec& spec = in.spec;
   const auto start = std::chrono::steady_clock::now();
   if (!published_) {
-    history_.snapshot();
-    frames_.snapshot();
+    history_.publish_copy();
+    frames_.publish_copy();
   }
-  Checkpoint c = capture_state(sim);
-  c.case_toml = sim.spec().resolved_toml;
+  Checkpoint c = capture_state(state);
+  c.case_toml = spec.resolved_toml;
   c.bond_hash = bond_hash_;
   c.run_id = run_id_;
   c.frames = frames_.frames_total();
@@ -109,18 +113,18 @@ void RunOutputs::checkpoint(Simulation& sim, RunFacts facts) {
   c.written_by = fmt::format("mpsolid {} ({})", build_info::version, build_info::git_commit);
   fill(facts);
   facts.checkpoints += 1;
-  facts.steps = sim.step() - facts.start_step;
+  facts.steps = state.step - facts.start_step;
   facts.wall_seconds = std::chrono::duration<double>(start - facts.started).count();
   c.segments = previous_segments_;
-  c.segments.push_back(segment_json(sim, facts));
+  c.segments.push_back(segment_json(in, facts).dump());
   checkpoint_bytes_ += write_checkpoint(checkpoint_path(dir_), c);
   ++checkpoints_;
-  last_checkpoint_step_ = sim.step();
+  last_checkpoint_step_ = state.step;
   checkpoint_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void RunOutputs::publish() {
+void RunFolder::publish() {
   history_.publish();
   frames_.publish();
   published_ = true;

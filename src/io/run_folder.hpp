@@ -22,20 +22,21 @@
 
 namespace mpsolid {
 
-class RunOutputs {
+class RunFolder {
  public:
   // A fresh run in `dir` (created if needed).
-  RunOutputs(const std::filesystem::path& dir, const Simulation& sim);
-  // A resumed run: `sim` holds the restored state of `from`.
-  RunOutputs(const std::filesystem::path& dir, const Simulation& sim, const Checkpoint& from);
+  RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec);
+  // A resumed run: `state` is the restored state of `from`.
+  RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec,
+            const Checkpoint& from);
 
   // A history.csv row (once per step), and a frame with its row.
-  void write_history(const Simulation& sim, const Diagnostics& d);
-  void write_frame(const Simulation& sim, const Diagnostics& d);
+  void write_history(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
+  void write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
   // Publishes copies of the outputs (unless published), then writes
   // checkpoint.h5 with the run.json segments so far, this one described by
   // `facts` (its figures are brought up to date here).
-  void checkpoint(Simulation& sim, RunFacts facts);
+  void checkpoint(const RunReportInputs& in, RunFacts facts);
   // Renames the staging files to their names (end of the run).
   void publish();
   // Brings the output figures of `facts` up to date.

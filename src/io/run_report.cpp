@@ -1,32 +1,37 @@
 #include "src/io/run_report.hpp"
 
-#include <fmt/format.h>
-
 #include "build_info.hpp"
 
 namespace mpsolid {
 
-std::string json_quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-      continue;
-    }
-    out += c;
+const char* outcome_name(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::completed:
+      return "completed";
+    case Outcome::interrupted:
+      return "interrupted";
+    case Outcome::stopped_by_sigint:
+      return "stopped by SIGINT";
+    case Outcome::stopped_by_sigterm:
+      return "stopped by SIGTERM";
+    case Outcome::unstable:
+      return "unstable";
   }
-  return out + "\"";
+  return "unknown";
+}
+
+bool stopped_by_signal(Outcome outcome) {
+  return outcome == Outcome::stopped_by_sigint || outcome == Outcome::stopped_by_sigterm;
 }
 
 namespace {
-// Wall seconds per phase, checkpoints included, as JSON members.
-std::string phases_json(const Simulation& sim, const RunFacts& facts, const char* separator) {
-  std::string phases;
+// Wall seconds per phase, checkpoints included.
+Json phases_json(const PhaseTimers& timers, const RunFacts& facts) {
+  Json phases = Json::object();
   for (std::size_t k = 0; k < kPhaseNames.size(); ++k)
-    phases += fmt::format("{}{}: {:.6g}", k ? separator : "", json_quoted(kPhaseNames[k]),
-                          sim.timers().seconds(static_cast<Phase>(k)));
-  return phases + fmt::format("{}\"checkpoint\": {:.6g}", separator, facts.checkpoint_seconds);
+    phases[kPhaseNames[k]] = timers.seconds(static_cast<Phase>(k));
+  phases["checkpoint"] = facts.checkpoint_seconds;
+  return phases;
 }
 
 double rate(const RunFacts& facts) {
@@ -34,74 +39,65 @@ double rate(const RunFacts& facts) {
 }
 }  // namespace
 
-std::string segment_json(const Simulation& sim, const RunFacts& facts) {
-  return fmt::format(
-      "{{\"command_line\": {}, \"outcome\": {}, \"threads\": {}, \"start_step\": {}, "
-      "\"final_step\": {}, \"steps\": {}, \"wall_seconds\": {:.6g}, \"steps_per_second\": "
-      "{:.6g}, \"frames\": {}, \"bytes_written\": {}, \"checkpoints\": {}, "
-      "\"checkpoint_bytes\": {}, \"phase_seconds\": {{{}}}}}",
-      json_quoted(facts.command_line), json_quoted(facts.outcome), facts.threads, facts.start_step,
-      sim.step(), facts.steps, facts.wall_seconds, rate(facts), facts.frames, facts.bytes_written,
-      facts.checkpoints, facts.checkpoint_bytes, phases_json(sim, facts, ", "));
+Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
+  return {{"command_line", facts.command_line},
+          {"outcome", outcome_name(facts.outcome)},
+          {"threads", facts.threads},
+          {"start_step", facts.start_step},
+          {"final_step", in.state.step},
+          {"steps", facts.steps},
+          {"wall_seconds", facts.wall_seconds},
+          {"steps_per_second", rate(facts)},
+          {"frames", facts.frames},
+          {"bytes_written", facts.bytes_written},
+          {"checkpoints", facts.checkpoints},
+          {"checkpoint_bytes", facts.checkpoint_bytes},
+          {"phase_seconds", phases_json(in.timers, facts)}};
 }
 
-// The estimate behind time.dt = "auto", if it was used.
-std::string stable_step_json(const Simulation& sim) {
-  const StableStepEstimate& e = sim.stable_step();
-  if (e.iterations == 0) return "";
-  return fmt::format(
-      ",\n  \"stable_step\": {{\"safety\": {:.17g}, \"dt_limit\": {:.17g}, \"omega_max\": {:.17g}, "
-      "\"iterations\": {}, \"converged\": {}}}",
-      sim.spec().dt_safety, e.dt_limit, e.omega_max, e.iterations, e.converged);
-}
-
-std::string run_report_json(const Simulation& sim, const RunFacts& facts,
+std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                             const std::vector<std::string>& previous_segments) {
   const double steps_per_second = rate(facts);
-  const std::string phases = "    " + phases_json(sim, facts, ",\n    ");
-  std::string segments;
-  for (const std::string& s : previous_segments) segments += "    " + s + ",\n";
-  segments += "    " + segment_json(sim, facts);
-  const std::size_t particles = sim.particles().size();
-  return fmt::format(
-      "{{\n"
-      "  \"program\": \"mpsolid\",\n"
-      "  \"version\": {},\n"
-      "  \"git_commit\": {},\n"
-      "  \"compiler\": {},\n"
-      "  \"build_type\": {},\n"
-      "  \"flags\": {},\n"
-      "  \"command_line\": {},\n"
-      "  \"case\": {},\n"
-      "  \"model\": {},\n"
-      "  \"outcome\": {},\n"
-      "  \"threads\": {},\n"
-      "  \"particles\": {},\n"
-      "  \"bonds\": {},\n"
-      "  \"dt\": {:.17g},\n"
-      "  \"steps\": {},\n"
-      "  \"final_step\": {},\n"
-      "  \"simulated_time\": {:.17g},\n"
-      "  \"start_step\": {},\n"
-      "  \"frames\": {},\n"
-      "  \"bytes_written\": {},\n"
-      "  \"checkpoints\": {},\n"
-      "  \"checkpoint_bytes\": {},\n"
-      "  \"wall_seconds\": {:.6g},\n"
-      "  \"steps_per_second\": {:.6g},\n"
-      "  \"particle_steps_per_second\": {:.6g},\n"
-      "  \"phase_seconds\": {{\n{}\n  }},\n"
-      "  \"segments\": [\n{}\n  ]{}{}\n"
-      "}}\n",
-      json_quoted(build_info::version), json_quoted(build_info::git_commit),
-      json_quoted(build_info::compiler), json_quoted(build_info::build_type),
-      json_quoted(build_info::cxx_flags), json_quoted(facts.command_line),
-      json_quoted(sim.spec().name), json_quoted(sim.spec().model), json_quoted(facts.outcome),
-      facts.threads, particles, sim.state().bonds.entry_count() / 2, sim.state().dt, facts.steps,
-      sim.step(), sim.time(), facts.start_step, facts.frames, facts.bytes_written,
-      facts.checkpoints, facts.checkpoint_bytes, facts.wall_seconds, steps_per_second,
-      steps_per_second * static_cast<double>(particles), phases, segments, stable_step_json(sim),
-      facts.diagnosis_json.empty() ? "" : ",\n  \"diagnosis\": " + facts.diagnosis_json);
+  const std::size_t particles = in.state.particles.size();
+  Json segments = Json::array();
+  for (const std::string& s : previous_segments) segments.push_back(Json::parse(s));
+  segments.push_back(segment_json(in, facts));
+  Json report = {{"program", "mpsolid"},
+                 {"version", build_info::version},
+                 {"git_commit", build_info::git_commit},
+                 {"compiler", build_info::compiler},
+                 {"build_type", build_info::build_type},
+                 {"flags", build_info::cxx_flags},
+                 {"command_line", facts.command_line},
+                 {"case", in.spec.name},
+                 {"model", in.spec.model},
+                 {"outcome", outcome_name(facts.outcome)},
+                 {"threads", facts.threads},
+                 {"particles", particles},
+                 {"bonds", in.state.bonds.entry_count() / 2},
+                 {"dt", in.spec.dt},
+                 {"steps", facts.steps},
+                 {"final_step", in.state.step},
+                 {"simulated_time", in.spec.time_at(in.state.step)},
+                 {"start_step", facts.start_step},
+                 {"frames", facts.frames},
+                 {"bytes_written", facts.bytes_written},
+                 {"checkpoints", facts.checkpoints},
+                 {"checkpoint_bytes", facts.checkpoint_bytes},
+                 {"wall_seconds", facts.wall_seconds},
+                 {"steps_per_second", steps_per_second},
+                 {"particle_steps_per_second", steps_per_second * static_cast<double>(particles)},
+                 {"phase_seconds", phases_json(in.timers, facts)},
+                 {"segments", segments}};
+  // The estimate behind time.dt = "auto", if it was used.
+  if (const StableStepEstimate& e = in.stable_step; e.iterations > 0)
+    report["stable_step"] = {{"safety", in.spec.dt_safety},
+                             {"dt_limit", e.dt_limit},
+                             {"omega_max", e.omega_max},
+                             {"iterations", e.iterations},
+                             {"converged", e.converged}};
+  if (!facts.diagnosis_json.is_null()) report["diagnosis"] = facts.diagnosis_json;
+  return report.dump(2) + "\n";
 }
 
 }  // namespace mpsolid

@@ -5,15 +5,27 @@
 // checkpoints) under "segments", oldest first.
 #include <chrono>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "src/solver/simulation.hpp"
+#include "src/case/case_spec.hpp"
+#include "src/core/solver_state.hpp"
+#include "src/core/stable_step_estimate.hpp"
+#include "src/core/timers.hpp"
 
 namespace mpsolid {
 
-// s as a JSON string literal, quotes and control characters escaped.
-std::string json_quoted(const std::string& s);
+// JSON objects keep their members in the order written.
+using Json = nlohmann::ordered_json;
+
+// How a run (segment) ended. `interrupted` is what a checkpoint written
+// mid-run records: a run that stopped there without a word was killed.
+enum class Outcome { completed, interrupted, stopped_by_sigint, stopped_by_sigterm, unstable };
+
+// The words run.json, checkpoints and the summary use ("stopped by SIGTERM").
+const char* outcome_name(Outcome outcome);
+bool stopped_by_signal(Outcome outcome);
 
 struct RunFacts {
   std::string command_line;
@@ -22,9 +34,9 @@ struct RunFacts {
   double wall_seconds = 0;
   int frames = 0;
   std::uintmax_t bytes_written = 0;
-  std::string outcome = "completed";
-  std::string diagnosis;       // why an unstable run stopped, in words
-  std::string diagnosis_json;  // the same as a JSON object
+  Outcome outcome = Outcome::completed;
+  std::string diagnosis;  // why an unstable run stopped, in words
+  Json diagnosis_json;    // the same as a JSON object (null otherwise)
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::int64_t start_step = 0;          // where this run (segment) started
   int checkpoints = 0;                  // checkpoints written
@@ -32,11 +44,21 @@ struct RunFacts {
   double checkpoint_seconds = 0;        // wall time writing them (output snapshots included)
 };
 
-// One segment as a JSON object (one line).
-std::string segment_json(const Simulation& sim, const RunFacts& facts);
+// What a report shows besides the facts: the case, the state reached, the
+// phase timers and the automatic step's estimate.
+struct RunReportInputs {
+  const CaseSpec& spec;
+  const SolverState& state;
+  const PhaseTimers& timers;
+  const StableStepEstimate& stable_step;
+};
 
-// `previous_segments`: the segments before this one (from the checkpoint).
-std::string run_report_json(const Simulation& sim, const RunFacts& facts,
+// One segment as a JSON object.
+Json segment_json(const RunReportInputs& in, const RunFacts& facts);
+
+// The whole run.json text; `previous_segments` are the segments before this
+// one (from the checkpoint), each a JSON object's text.
+std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                             const std::vector<std::string>& previous_segments = {});
 
 }  // namespace mpsolid

@@ -16,12 +16,11 @@ double bending_mode_shape(const BendingMode& mode, double x) {
   return f(x - mode.root_x) / f(mode.length);
 }
 
-void apply_initial_motion(SolverState& s, const CaseSpec& spec,
-                          const std::vector<Range>& body_ranges, bool with_rotation) {
+void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotation) {
   ParticleStore& p = s.particles;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const BodySpec& body = spec.bodies[b];
-    const Range r = body_ranges[b];
+    const Range r = s.body_ranges[b];
     if (body.kind == Kind::rigid) {
       for (RigidBody& rb : s.rigid_bodies)
         if (rb.name == body.name) {

@@ -22,10 +22,9 @@ int group_of(Kind kind) {
 }
 }  // namespace
 
-SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
+SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   auto timer = timers.time(Phase::setup);
-  SetupResult result;
-  SolverState& s = result.state;
+  SolverState s;
 
   // Ids in case order (bodies by name, sites row by row).
   std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
@@ -42,14 +41,14 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   ParticleStore& p = s.particles;
   p.resize(static_cast<std::size_t>(next_id));
-  result.body_ranges.resize(spec.bodies.size());
+  s.body_ranges.resize(spec.bodies.size());
   std::size_t next = 0;
   for (std::size_t b : order) {
     const BodySpec& body = spec.bodies[b];
     const Material& mat = spec.materials[static_cast<std::size_t>(body.material)];
     const double mass = mat.density * spec.l0 * spec.l0 * spec.depth;
     const double inertia = mass * spec.l0 * spec.l0 / 6.0;  // square particle
-    result.body_ranges[b] = {next, next + by_body[b].size()};
+    s.body_ranges[b] = {next, next + by_body[b].size()};
     for (const NewParticle& np : by_body[b]) {
       p.x[next] = p.x0[next] = np.x;
       p.y[next] = p.y0[next] = np.y;
@@ -88,12 +87,12 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   for (std::size_t b : order)
     if (spec.bodies[b].kind == Kind::rigid)
-      s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, result.body_ranges[b]));
+      s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, s.body_ranges[b]));
 
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none)
       s.holds.push_back(
-          {result.body_ranges[b], spec.bodies[b].hold == Hold::x, spec.bodies[b].hold == Hold::y});
+          {s.body_ranges[b], spec.bodies[b].hold == Hold::x, spec.bodies[b].hold == Hold::y});
 
   // Probes: the nearest particle to the point, lowest id on a tie.
   for (const ProbeSpec& probe : spec.probes) {
@@ -107,22 +106,21 @@ SetupResult set_up(const CaseSpec& spec, PhaseTimers& timers) {
         best_d2 = d2;
       }
     }
-    result.probes.push_back(best);
+    s.probes.push_back(best);
   }
 
   for (const LoadSpec& l : spec.loads) {
     StepLoad load;
     load.name = l.name;
-    load.range = result.body_ranges[static_cast<std::size_t>(l.body)];
+    load.range = s.body_ranges[static_cast<std::size_t>(l.body)];
     load.fx = l.force[0];
     load.fy = l.force[1];
     s.loads.push_back(load);
   }
-  return result;
+  return s;
 }
 
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
-  s.dt = spec.dt;
   for (std::size_t k = 0; k < spec.loads.size(); ++k)
     s.loads[k].first_step =
         static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));

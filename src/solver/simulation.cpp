@@ -6,31 +6,21 @@
 
 #include "src/core/float_mode.hpp"
 #include "src/solver/initial_motion.hpp"
-#include "src/solver/stable_step.hpp"
+#include "src/solver/setup.hpp"
+#include "src/solver/step.hpp"
+#include "src/solver/time_step_choice.hpp"
 
 namespace mpsolid {
 
-Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
-  set_flush_subnormals(spec_.flush_subnormals);
-  SetupResult setup = set_up(spec_, timers_);
-  state_ = std::move(setup.state);
-  body_ranges_ = std::move(setup.body_ranges);
-  probes_ = std::move(setup.probes);
+Simulation::Simulation(const CaseSpec& spec) {
+  set_flush_subnormals(spec.flush_subnormals);
+  TimeStepChoice choice = fix_time_step(spec, timers_);
+  spec_ = std::move(choice.spec);
+  stable_step_ = choice.estimate;
+  state_ = set_up(spec_, timers_);
   model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
-  const bool with_rotation = std::visit([](const auto& m) { return m.uses_rotation; }, model_);
-  if (spec_.dt_auto) {
-    auto t = timers_.time(Phase::setup);
-    stable_step_ = std::visit(
-        [&](auto& model) { return estimate_stable_step(model, state_, spec_.l0); }, model_);
-    if (!(stable_step_.dt_limit > 0))
-      throw InputError(fmt::format(
-          "{}: time.dt = \"auto\" needs elastic particles to estimate the stable step from; "
-          "give dt in s",
-          spec_.source));
-    spec_.set_auto_time_step(stable_step_.dt_limit, stable_step_.omega_max);
-  }
   schedule_loads(state_, spec_);
-  apply_initial_motion(state_, spec_, body_ranges_, with_rotation);
+  apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy;
@@ -38,7 +28,7 @@ Simulation::Simulation(const CaseSpec& spec) : spec_(spec) {
 
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
-  std::visit([&](auto& model) { advance_steps(model, state_, timers_, steps); }, model_);
+  std::visit([&](auto& model) { advance_steps(model, state_, spec_.dt, timers_, steps); }, model_);
 }
 
 void Simulation::refresh_fields() {

@@ -1,13 +1,15 @@
 #pragma once
 // A case set up and ready to step: the solver state, the chosen model and the
-// phase timers. The run loop with outputs lives in run.hpp.
+// phase timers, its case fixed (dt chosen). The run loop with outputs lives in
+// src/app/run.hpp.
 #include <cstdint>
 
 #include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
 #include "src/core/diagnostics.hpp"
+#include "src/core/solver_state.hpp"
 #include "src/core/stability.hpp"
-#include "src/solver/setup.hpp"
+#include "src/core/timers.hpp"
 #include "src/solver/stable_step.hpp"
 
 namespace mpsolid {
@@ -31,7 +33,7 @@ class Simulation {
   // Sum of KE and PE at set-up, the reference of the energy balance.
   double initial_energy() const { return initial_energy_; }
 
-  double time() const { return static_cast<double>(state_.step) * state_.dt; }
+  double time() const { return spec_.time_at(state_.step); }
   std::int64_t step() const { return state_.step; }
 
   const CaseSpec& spec() const { return spec_; }
@@ -39,9 +41,6 @@ class Simulation {
   const SolverState& state() const { return state_; }
   const ParticleStore& particles() const { return state_.particles; }
   ParticleStore& particles() { return state_.particles; }
-  const std::vector<Range>& body_ranges() const { return body_ranges_; }
-  // Storage index of each probe's particle (spec().probes order).
-  const std::vector<std::size_t>& probe_particles() const { return probes_; }
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
@@ -53,8 +52,6 @@ class Simulation {
   CaseSpec spec_;
   PhaseTimers timers_;
   SolverState state_;
-  std::vector<Range> body_ranges_;
-  std::vector<std::size_t> probes_;
   AnyModel model_;
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;

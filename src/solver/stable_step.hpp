@@ -17,16 +17,10 @@
 #include <vector>
 
 #include "src/core/half_angles.hpp"
-#include "src/solver/step.hpp"
+#include "src/core/solver_state.hpp"
+#include "src/core/stable_step_estimate.hpp"
 
 namespace mpsolid {
-
-struct StableStepEstimate {
-  double omega_max = 0;  // rad/s
-  double dt_limit = 0;   // 2 / omega_max (s)
-  int iterations = 0;
-  bool converged = false;
-};
 
 namespace detail {
 // y = A u for the mass-weighted stiffness A about the state `base`; `work` is

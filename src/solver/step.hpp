@@ -12,34 +12,15 @@
 // particles all lie in one block is projected by that block's thread right
 // after its kick (one barrier less per step). Every particle's arithmetic is
 // the same at any thread count and batch size: the same bits.
+#include <algorithm>
 #include <cstdint>
-#include <optional>
-#include <vector>
 
-#include "src/core/bonds.hpp"
 #include "src/core/half_angles.hpp"
-#include "src/core/holds.hpp"
 #include "src/core/integrator.hpp"
-#include "src/core/loads.hpp"
-#include "src/core/parallel.hpp"
-#include "src/core/particle_store.hpp"
-#include "src/core/rigid_body.hpp"
-#include "src/core/timers.hpp"
+#include "src/core/solver_state.hpp"
+#include "src/solver/step_schedule.hpp"
 
 namespace mpsolid {
-
-struct SolverState {
-  ParticleStore particles;
-  BondTable bonds;
-  std::vector<RigidBody> rigid_bodies;
-  std::vector<StepLoad> loads;
-  std::vector<HeldRange> holds;
-  double dt = 0;
-  std::int64_t step = 0;
-  // The largest external work seen by a stability check: the energy scale of
-  // the balance check, which must not shrink when a load gets work back.
-  double peak_work = 0;
-};
 
 // Fields that depend on the current positions only: half angles, strain and
 // pressure. Walls keep theta = 0, so their half angles are set once.
@@ -53,53 +34,25 @@ void update_strain(Model& model, SolverState& s, PhaseTimers& timers) {
   model.compute_strain(s.particles, s.bonds, s.particles.all());
 }
 
-// Times a phase on the team's rank 0 only (the timers are not shared); the
-// time includes the wait at the phase's closing barrier.
-class TeamPhase {
- public:
-  TeamPhase(PhaseTimers& timers, Phase phase) {
-    if (team_rank() == 0) scope_.emplace(timers, phase);
-  }
-
- private:
-  std::optional<PhaseTimers::Scope> scope_;
-};
-
-// True when every rigid body lies inside one static block of the moving
-// particles, so its projection can follow its particles' kick on one thread.
-inline bool bodies_in_single_blocks(const SolverState& s) {
-  const Range moving = s.particles.moving();
-  const std::size_t threads = team_size();
-  for (const RigidBody& body : s.rigid_bodies) {
-    bool inside = false;
-    for (std::size_t r = 0; r < threads && !inside; ++r) {
-      const Range block = static_block(moving.begin, moving.end, r, threads);
-      inside = block.begin <= body.range.begin && body.range.end <= block.end;
-    }
-    if (!inside) return false;
-  }
-  return true;
-}
-
 // Loads, holds, kick, drift and half angles of the moving particles in one block,
 // and the projection of the rigid bodies inside it when `project_bodies`.
 template <bool Rotation>
-void integrate_block(SolverState& s, Range block, bool project_bodies) {
+void integrate_block(SolverState& s, double dt, Range block, bool project_bodies) {
   ParticleStore& p = s.particles;
   apply_loads(p, s.loads, block);
   if (!s.holds.empty()) clear_held_forces(p, s.holds, block);
-  kick_drift(p, {block.begin, std::min(block.end, p.elastic.end)}, s.dt, Rotation);
-  kick(p, {std::max(block.begin, p.rigid.begin), block.end}, s.dt, Rotation);
+  kick_drift(p, {block.begin, std::min(block.end, p.elastic.end)}, dt, Rotation);
+  kick(p, {std::max(block.begin, p.rigid.begin), block.end}, dt, Rotation);
   if (!project_bodies) return;
   for (RigidBody& body : s.rigid_bodies)
     if (block.begin <= body.range.begin && body.range.end <= block.end)
-      project_rigid_body(p, body, s.dt, Rotation);
+      project_rigid_body(p, body, dt, Rotation);
 }
 
 // One step, called by every thread of the team. Needs the half angles of
 // the current rotations (the previous step's integration leaves them).
 template <class Model>
-void team_step(Model& model, SolverState& s, PhaseTimers& timers, std::int64_t step,
+void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std::int64_t step,
                bool fused_bodies) {
   ParticleStore& p = s.particles;
   constexpr bool rot = Model::uses_rotation;
@@ -118,19 +71,20 @@ void team_step(Model& model, SolverState& s, PhaseTimers& timers, std::int64_t s
   {
     TeamPhase t(timers, Phase::integrate);
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      integrate_block<rot>(s, {b, e}, fused_bodies);
+      integrate_block<rot>(s, dt, {b, e}, fused_bodies);
     });
   }
   if (!fused_bodies && !s.rigid_bodies.empty()) {
     TeamPhase t(timers, Phase::rigid_bodies);
     parallel_for(0, s.rigid_bodies.size(),
-                 [&](std::size_t k) { project_rigid_body(p, s.rigid_bodies[k], s.dt, rot); });
+                 [&](std::size_t k) { project_rigid_body(p, s.rigid_bodies[k], dt, rot); });
   }
 }
 
-// Advances `steps` steps in one parallel region.
+// Advances `steps` steps of `dt` in one parallel region.
 template <class Model>
-void advance_steps(Model& model, SolverState& s, PhaseTimers& timers, std::int64_t steps) {
+void advance_steps(Model& model, SolverState& s, double dt, PhaseTimers& timers,
+                   std::int64_t steps) {
   if (steps <= 0) return;
   const std::int64_t first = s.step;
   run_in_team([&] {
@@ -139,7 +93,8 @@ void advance_steps(Model& model, SolverState& s, PhaseTimers& timers, std::int64
       compute_half_angles(s.particles, s.particles.moving());
     }
     const bool fused_bodies = bodies_in_single_blocks(s);
-    for (std::int64_t k = 0; k < steps; ++k) team_step(model, s, timers, first + k, fused_bodies);
+    for (std::int64_t k = 0; k < steps; ++k)
+      team_step(model, s, dt, timers, first + k, fused_bodies);
   });
   s.step = first + steps;
 }

@@ -68,7 +68,7 @@ void expect_same_state(Simulation& a, Simulation& b) {
 }
 
 Checkpoint full_checkpoint(Simulation& sim) {
-  Checkpoint c = capture_state(sim);
+  Checkpoint c = capture_state(sim.state());
   c.case_toml = sim.spec().resolved_toml;
   c.bond_hash = sim.state().bonds.hash();
   c.run_id = 42;
@@ -94,7 +94,7 @@ void expect_resume_is_seamless(const std::vector<std::string>& overrides, std::i
   set_thread_count(threads);
   const Checkpoint c = read_checkpoint(path);
   Simulation resumed(load_case_text(c.case_toml, path.string()));
-  restore_state(resumed, c, path.string());
+  restore_state(resumed.state(), c, path.string());
   EXPECT_EQ(resumed.step(), first);
   resumed.advance(second);
   set_thread_count(1);
@@ -140,7 +140,7 @@ TEST(Checkpoint, RoundTripKeepsEveryBit) {
 TEST(Checkpoint, ParticleArraysAreInIdOrder) {
   Simulation sim(testing::rod_case());
   sim.advance(10);
-  const Checkpoint c = capture_state(sim);
+  const Checkpoint c = capture_state(sim.state());
   const ParticleStore& p = sim.particles();
   ASSERT_EQ(c.particle_arrays[0].first, "x");
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -171,7 +171,7 @@ TEST(Checkpoint, RefusesAnotherBondTable) {
   write_checkpoint(path, c);
   Simulation fresh(testing::rod_case());
   try {
-    restore_state(fresh, read_checkpoint(path), path.string());
+    restore_state(fresh.state(), read_checkpoint(path), path.string());
     FAIL() << "restored a checkpoint with another bond table";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bond table differs"), std::string::npos) << e.what();
@@ -212,13 +212,13 @@ TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {
   Checkpoint c = full_checkpoint(sim);
   Checkpoint missing = c;
   missing.particle_arrays.pop_back();
-  EXPECT_THROW(restore_state(sim, missing, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state(), missing, "test"), InputError);
   Checkpoint shorter = c;
   for (auto& [name, values] : shorter.particle_arrays) values.pop_back();
-  EXPECT_THROW(restore_state(sim, shorter, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state(), shorter, "test"), InputError);
   Checkpoint renamed = c;
   renamed.rigid_bodies[0].name = "lid";
-  EXPECT_THROW(restore_state(sim, renamed, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state(), renamed, "test"), InputError);
 }
 
 TEST(Checkpoint, RefusesADamagedFile) {

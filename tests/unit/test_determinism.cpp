@@ -119,7 +119,7 @@ TEST(Holds, HeldComponentStaysZeroAtAnyThreadCount) {
         testing::rod_case({"l0=0.004", "bodies.rod.hold=\"y\"", "bodies.rod.spin=50.0"}));
     sim.advance(200);
     const ParticleStore& p = sim.particles();
-    const Range rod = sim.body_ranges()[1];  // bodies in name order: plate, rod, wall
+    const Range rod = sim.state().body_ranges[1];  // bodies in name order: plate, rod, wall
     double vx = 0;
     for (std::size_t i = rod.begin; i < rod.end; ++i) {
       ASSERT_EQ(p.vy[i], 0.0) << threads << " threads, particle " << p.id[i];

@@ -40,7 +40,7 @@ TEST(StableStep, ChosenStepIsSafetyTimesLimitWithWholeStepsPerOutput) {
   EXPECT_LE(dt, 0.25 * sim.stable_step().dt_limit);
   EXPECT_GT(dt, 0.24 * sim.stable_step().dt_limit);
   EXPECT_DOUBLE_EQ(1e-4 / dt, std::round(1e-4 / dt));
-  EXPECT_EQ(sim.state().dt, dt);
+  EXPECT_EQ(sim.spec().dt, dt);
 }
 
 TEST(StableStep, SameStepAtAnyThreadCount) {

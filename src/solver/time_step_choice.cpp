@@ -1,0 +1,31 @@
+#include "src/solver/time_step_choice.hpp"
+
+#include <fmt/format.h>
+
+#include "kernels/model_registry.hpp"
+#include "src/solver/setup.hpp"
+
+namespace mpsolid {
+
+TimeStepChoice fix_time_step(const CaseSpec& spec, PhaseTimers& timers) {
+  TimeStepChoice choice{spec, {}};
+  if (!spec.dt_auto || spec.dt > 0) return choice;
+  // The initial state the estimate linearises about; the run builds its own
+  // from the fixed case (the same bits: set-up does not depend on dt).
+  SolverState initial = set_up(spec, timers);
+  AnyModel model = make_model(spec.model, initial.particles, initial.bonds, spec.model_options);
+  {
+    auto t = timers.time(Phase::setup);
+    choice.estimate =
+        std::visit([&](auto& m) { return estimate_stable_step(m, initial, spec.l0); }, model);
+  }
+  if (!(choice.estimate.dt_limit > 0))
+    throw InputError(fmt::format(
+        "{}: time.dt = \"auto\" needs elastic particles to estimate the stable step from; "
+        "give dt in s",
+        spec.source));
+  choice.spec.set_auto_time_step(choice.estimate.dt_limit, choice.estimate.omega_max);
+  return choice;
+}
+
+}  // namespace mpsolid

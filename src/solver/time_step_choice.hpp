@@ -1,0 +1,20 @@
+#pragma once
+// Fixing a case's time step before its state is built: as given, or for
+// time.dt = "auto" safety x the model's stable-step limit, estimated on the
+// case's initial state (src/solver/stable_step.hpp) and rounded so that every
+// output interval is a whole number of steps (CaseSpec::set_auto_time_step).
+#include "src/case/case_spec.hpp"
+#include "src/core/timers.hpp"
+#include "src/solver/stable_step.hpp"
+
+namespace mpsolid {
+
+struct TimeStepChoice {
+  CaseSpec spec;                // dt > 0, in resolved_toml too
+  StableStepEstimate estimate;  // zeros when dt was given
+};
+
+// Throws InputError when "auto" has no elastic particle to estimate from.
+TimeStepChoice fix_time_step(const CaseSpec& spec, PhaseTimers& timers);
+
+}  // namespace mpsolid
