@@ -4,6 +4,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/registry.hpp"
+#include "neighbor/bond_search.hpp"
 #include "src/solver/simulation.hpp"
 
 namespace mpsolid::bench {

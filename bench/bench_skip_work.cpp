@@ -17,6 +17,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/registry.hpp"
+#include "neighbor/bond_search.hpp"
 #include "src/solver/simulation.hpp"
 #include "src/solver/step.hpp"
 

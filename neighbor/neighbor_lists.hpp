@@ -14,9 +14,6 @@ struct NeighborLists {
 
   std::size_t point_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   std::size_t pair_count() const { return indices.size(); }
-  std::span<const std::uint32_t> of(std::size_t i) const {
-    return {indices.data() + offsets[i], indices.data() + offsets[i + 1]};
-  }
   bool operator==(const NeighborLists&) const = default;
 };
 

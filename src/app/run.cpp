@@ -101,58 +101,67 @@ std::int64_t next_on_cadence(std::int64_t step, std::int64_t every) {
   return every > 0 ? (step / every + 1) * every : std::numeric_limits<std::int64_t>::max();
 }
 
-// The loop with outputs, from the state in `sim` (set up, or restored from a
-// checkpoint) to the end of the case, a stop signal or a blow-up. `fresh`:
-// the run starts at step 0 and writes its first frame and checkpoint.
-int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
-             bool fresh) {
-  const CaseSpec& spec = sim.spec();
-  const auto wall_start = facts.started;
+// A case's output and check cadences, in steps.
+struct Cadences {
+  std::int64_t total, frame, history, check, checkpoint;
+  // Steps between looks at the stop flag: about 2e7 particle-steps (well
+  // under a second), at most 2000.
+  std::int64_t chunk;
 
-  // Writes the current state as a frame (its fields must be fresh).
+  Cadences(const CaseSpec& spec, std::size_t particles)
+      : total(spec.step_count()),
+        frame(spec.steps_per_frame()),
+        history(spec.steps_per_history()),
+        check(spec.stability.check_interval),
+        checkpoint(spec.steps_per_checkpoint()),
+        chunk(std::clamp<std::int64_t>(
+            20'000'000 / static_cast<std::int64_t>(std::max<std::size_t>(1, particles)), 1, 2000)) {
+  }
+
+  // The next step at which something must be looked at or written.
+  std::int64_t next_stop(std::int64_t step) const {
+    return std::min({std::min(total, (step / frame + 1) * frame), next_on_cadence(step, history),
+                     next_on_cadence(step, check), next_on_cadence(step, checkpoint)});
+  }
+};
+
+// Steps the state in `sim` (set up, or restored from a checkpoint) to the end
+// of the case, a stop signal or a blow-up, writing frames, history rows and
+// checkpoints on their cadences. `fresh`: the run starts at step 0 and writes
+// its first frame and checkpoint. Fills the outcome (and diagnosis) in `facts`.
+void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
+                 bool fresh) {
+  const Cadences every(sim.spec(), sim.particles().size());
   std::int64_t last_frame_step = -1;
+  // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
     outputs.write_frame(sim.state(), sim.spec(), d);
     last_frame_step = sim.step();
   };
-  // A checkpoint of the current state; the segment is "interrupted" in it
-  // unless it is the run's last.
-  auto checkpoint = [&](Outcome outcome) {
+  // A checkpoint mid-run records the segment as "interrupted".
+  auto checkpoint = [&] {
     RunFacts now = facts;
-    now.outcome = outcome;
+    now.outcome = Outcome::interrupted;
     outputs.checkpoint(report_inputs(sim), now);
   };
 
-  const std::int64_t total = spec.step_count();
-  const std::int64_t cadence = spec.steps_per_frame();
-  const std::int64_t history_every = spec.steps_per_history();
-  const std::int64_t check_every = spec.stability.check_interval;
-  const std::int64_t checkpoint_every = spec.steps_per_checkpoint();
-  // Steps between looks at the stop flag: about 2e7 particle-steps (well
-  // under a second), at most 2000.
-  const std::int64_t chunk = std::clamp<std::int64_t>(
-      20'000'000 / static_cast<std::int64_t>(std::max<std::size_t>(1, sim.particles().size())), 1,
-      2000);
-  Progress progress(total, spec.dt, options.progress);
+  Progress progress(every.total, sim.spec().dt, options.progress);
   if (fresh) {
     write_frame(sim.diagnostics());
-    checkpoint(Outcome::interrupted);
+    checkpoint();
   }
   StateSnapshot last_good = StateSnapshot::capture(sim.state());
-  while (sim.step() < total) {
-    const std::int64_t next_frame = std::min(total, (sim.step() / cadence + 1) * cadence);
-    const std::int64_t next_check = std::min(
-        {next_frame, next_on_cadence(sim.step(), history_every),
-         next_on_cadence(sim.step(), check_every), next_on_cadence(sim.step(), checkpoint_every)});
-    while (sim.step() < next_check && !stop_requested()) {
-      sim.advance(std::min(chunk, next_check - sim.step()));
+  facts.outcome = Outcome::completed;
+  while (sim.step() < every.total) {
+    const std::int64_t next = every.next_stop(sim.step());
+    while (sim.step() < next && !stop_requested()) {
+      sim.advance(std::min(every.chunk, next - sim.step()));
       progress.update(sim.step());
     }
     Diagnostics d;
     const StabilityVerdict verdict = sim.check_stability(&d);
     if (!verdict.ok) {
-      progress.finish();
       facts.outcome = Outcome::unstable;
       facts.diagnosis = describe_failure(sim, verdict, last_good.step);
       facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
@@ -162,15 +171,16 @@ int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOpti
       break;
     }
     last_good = StateSnapshot::capture(sim.state());
-    if (sim.step() == next_frame) write_frame(d);
-    if (sim.step() % history_every == 0) {
+    const std::int64_t step = sim.step();
+    if (step == every.total || step % every.frame == 0) write_frame(d);
+    if (step % every.history == 0) {
       auto t = sim.timers().time(Phase::output);
       outputs.write_history(sim.state(), sim.spec(), d);
     }
-    if (sim.step() == total) break;
-    if (checkpoint_every > 0 && sim.step() % checkpoint_every == 0 &&
-        sim.step() > outputs.last_checkpoint_step())
-      checkpoint(Outcome::interrupted);
+    if (step == every.total) break;
+    if (every.checkpoint > 0 && step % every.checkpoint == 0 &&
+        step > outputs.last_checkpoint_step())
+      checkpoint();
     if (stop_requested()) {
       facts.outcome =
           stop_signal() == SIGTERM ? Outcome::stopped_by_sigterm : Outcome::stopped_by_sigint;
@@ -178,39 +188,60 @@ int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOpti
     }
   }
   progress.finish();
+}
 
+// Publishes the outputs, writes the run's last checkpoint (an unstable state
+// is not one to go on from) and run.json, prints the summary.
+void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options) {
+  const auto seconds_since_start = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - facts.started).count();
+  };
   facts.steps = sim.step() - facts.start_step;
-  facts.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  facts.wall_seconds = seconds_since_start();
   {
     auto t = sim.timers().time(Phase::output);
     outputs.publish();
   }
-  // The last checkpoint of the run; an unstable state is not one to go on from.
-  if (facts.outcome != Outcome::unstable) checkpoint(facts.outcome);
+  if (facts.outcome != Outcome::unstable) outputs.checkpoint(report_inputs(sim), facts);
   outputs.fill(facts);
-  facts.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  facts.wall_seconds = seconds_since_start();
   write_file_atomically(options.out_dir / "run.json",
                         run_report_json(report_inputs(sim), facts, outputs.previous_segments()));
   print_summary(sim, facts, options);
-  if (stopped_by_signal(facts.outcome)) {
-    fmt::print(stderr,
-               "mpsolid: {} at t = {:.6g} s (step {}); checkpoint and outputs are in {}. Continue "
-               "with: mpsolid resume {}\n",
-               outcome_name(facts.outcome), sim.time(), sim.step(), options.out_dir.string(),
-               options.out_dir.string());
-    return kExitStopped;
+}
+
+// The process exit code of an outcome, with what the user must know on stderr.
+int exit_code(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {
+  switch (facts.outcome) {
+    case Outcome::completed:
+      return kExitOk;
+    case Outcome::stopped_by_sigint:
+    case Outcome::stopped_by_sigterm:
+      fmt::print(stderr,
+                 "mpsolid: {} at t = {:.6g} s (step {}); checkpoint and outputs are in {}. "
+                 "Continue with: mpsolid resume {}\n",
+                 outcome_name(facts.outcome), sim.time(), sim.step(), options.out_dir.string(),
+                 options.out_dir.string());
+      return kExitStopped;
+    case Outcome::unstable:
+      fmt::print(stderr,
+                 "mpsolid: unstable: {}\n  The last good state (t = {:.6g} s) is the last "
+                 "frame of {} and {}.\n",
+                 facts.diagnosis, sim.time(), (options.out_dir / "history.csv").string(),
+                 (options.out_dir / "frames.h5").string());
+      return kExitUnstable;
+    case Outcome::interrupted:
+      break;  // only ever recorded in a checkpoint mid-run
   }
-  if (facts.outcome == Outcome::unstable) {
-    fmt::print(stderr,
-               "mpsolid: unstable: {}\n  The last good state (t = {:.6g} s) is the last "
-               "frame of {} and {}.\n",
-               facts.diagnosis, sim.time(), (options.out_dir / "history.csv").string(),
-               (options.out_dir / "frames.h5").string());
-    return kExitUnstable;
-  }
-  return kExitOk;
+  return kExitError;
+}
+
+// The run with outputs: steps to the end, then the closing files and summary.
+int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
+             bool fresh) {
+  step_to_end(sim, outputs, facts, options, fresh);
+  finish_run(sim, outputs, facts, options);
+  return exit_code(sim, facts, options);
 }
 
 // `--set` keys a resumed run may change: the rest would make it another case.

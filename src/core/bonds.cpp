@@ -1,5 +1,7 @@
 #include "src/core/bonds.hpp"
 
+#include <utility>
+
 #include "src/core/hash.hpp"
 #include "src/core/parallel.hpp"
 
@@ -9,12 +11,12 @@ BondGeometry bond_geometry(double l0, double depth) {
   return {l0, kRadiusOverSpacing * l0, l0 * l0 * depth};
 }
 
-BondTable make_bond_table(const ParticleStore& p, const NeighborLists& lists,
-                          const BondGeometry& geometry) {
+BondTable make_bond_table(const ParticleStore& p, std::vector<std::uint32_t> offsets,
+                          std::vector<std::uint32_t> neighbor, const BondGeometry& geometry) {
   BondTable t;
   t.geometry = geometry;
-  t.offsets = lists.offsets;
-  t.neighbor = lists.indices;
+  t.offsets = std::move(offsets);
+  t.neighbor = std::move(neighbor);
   t.r0x.resize(t.neighbor.size());
   t.r0y.resize(t.neighbor.size());
   parallel_for(0, p.size(), [&](std::size_t i) {
@@ -25,12 +27,6 @@ BondTable make_bond_table(const ParticleStore& p, const NeighborLists& lists,
     }
   });
   return t;
-}
-
-BondTable build_bonds(const ParticleStore& particles, const BondGeometry& geometry,
-                      NeighborMethod method) {
-  return make_bond_table(particles, find_neighbors(particles.x0, particles.y0, geometry.re, method),
-                         geometry);
 }
 
 std::uint64_t BondTable::hash() const {

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "neighbor/neighbor_lists.hpp"
 #include "src/core/particle_store.hpp"
 
 namespace mpsolid {
@@ -36,12 +35,9 @@ struct BondTable {
   std::uint64_t hash() const;
 };
 
-// The table for neighbour lists over the reference positions.
-BondTable make_bond_table(const ParticleStore& particles, const NeighborLists& lists,
-                          const BondGeometry& geometry);
-
-// Convenience: neighbour search on x0, y0 within re, then make_bond_table.
-BondTable build_bonds(const ParticleStore& particles, const BondGeometry& geometry,
-                      NeighborMethod method = NeighborMethod::cell_list);
+// The table for neighbour lists (compressed rows, ascending within a row) of
+// the reference positions; neighbor/bond_search.hpp finds them.
+BondTable make_bond_table(const ParticleStore& particles, std::vector<std::uint32_t> offsets,
+                          std::vector<std::uint32_t> neighbor, const BondGeometry& geometry);
 
 }  // namespace mpsolid

@@ -121,9 +121,4 @@ void serial_section(F&& f) {
   f();
 }
 
-// Waits for every thread of the team (nothing outside a team).
-inline void barrier() {
-  if (in_team()) detail::team_barrier();
-}
-
 }  // namespace mpsolid

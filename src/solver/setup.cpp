@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "neighbor/bond_search.hpp"
 #include "src/core/geometry.hpp"
 
 namespace mpsolid {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "neighbor/bond_search.hpp"
 #include "neighbor/neighbor_lists.hpp"
-#include "src/core/bonds.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
