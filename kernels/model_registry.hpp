@@ -7,12 +7,14 @@
 #include <vector>
 
 #include "kernels/finite_strain_model.hpp"
+#include "kernels/linear_elastic_model.hpp"
 #include "kernels/model_concept.hpp"
 #include "kernels/paper_model.hpp"
 
 namespace mpsolid {
 
-using AnyModel = std::variant<PaperModel, PaperConservativeModel, FiniteStrainModel>;
+using AnyModel =
+    std::variant<PaperModel, PaperConservativeModel, FiniteStrainModel, LinearElasticModel>;
 
 // Every model's name, case section and options table, in variant order.
 const std::vector<ModelInfo>& model_catalog();

@@ -193,6 +193,8 @@ expect_bad_input set_under_value "--set" "l0.x=1" -- \
   run "$CASE" --set l0.x=1 --out "$SEEDED" --threads 2
 expect_bad_input set_unknown_key "--set" "time.dtt" "unknown key" -- \
   run "$CASE" --set time.dtt=1e-8 --out "$SEEDED" --threads 2
+expect_bad_input set_model_option "--set" "linear_elastic.hourglass" "[0, inf)" -- \
+  run "$CASE" --set model=linear_elastic --set linear_elastic.hourglass=-1 --out "$SEEDED" --threads 2
 expect_bad_input unknown_option "--bogus" -- run "$CASE" --bogus --out "$SEEDED"
 expect_bad_input unknown_subcommand -- walk "$CASE" --out "$SEEDED"
 expect_bad_input no_subcommand --

@@ -174,6 +174,9 @@ TEST(CaseErrors, ModelOptionsAreCheckedAgainstTheModelsTable) {
                      {"bad.toml", "finite_strain.hourglas", "unknown key", "hourglass_form"});
   EXPECT_INPUT_ERROR(base_toml(), {"--set", "finite_strain.hourglass", "expected a number"},
                      {"finite_strain.hourglass=\"big\""});
+  // linear_elastic reads the same table from its own section.
+  EXPECT_INPUT_ERROR(base_toml(), {"--set", "linear_elastic.hourglass", "-1", "[0, inf)"},
+                     {"model=linear_elastic", "linear_elastic.hourglass=-1"});
 }
 
 TEST(CaseErrors, ModelOptionsTakeDefaultsAndReadBack) {

@@ -160,9 +160,13 @@ TEST_P(EveryModel, FreeBlockConservesMomentaWithARigidPlate) {
   const Diagnostics after = sim.diagnostics();
   EXPECT_LT(std::abs(after.momentum_x - before.momentum_x) / p_scale, 1e-12);
   EXPECT_LT(std::abs(after.momentum_y - before.momentum_y) / p_scale, 1e-12);
-  EXPECT_LT(std::abs(after.angular_momentum - before.angular_momentum) /
-                std::abs(before.angular_momentum),
-            1e-10);
+  // A model that is not rotation invariant (linear_elastic) has an energy
+  // that changes under rotation, so its angular momentum is not conserved.
+  if (model_info(GetParam()).rotation_invariant) {
+    EXPECT_LT(std::abs(after.angular_momentum - before.angular_momentum) /
+                  std::abs(before.angular_momentum),
+              1e-10);
+  }
 }
 
 TEST_P(EveryModel, DeterministicAcrossThreadCounts) {

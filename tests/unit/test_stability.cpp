@@ -13,7 +13,8 @@ namespace mpsolid {
 namespace {
 
 TEST(Stability, HealthyStatePassesEveryCheck) {
-  for (const std::string model : {"paper", "paper_conservative", "finite_strain"}) {
+  for (const std::string model :
+       {"paper", "paper_conservative", "finite_strain", "linear_elastic"}) {
     Simulation sim(testing::rod_case({"model=" + model}));
     sim.advance(500);
     Diagnostics d;

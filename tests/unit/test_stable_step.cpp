@@ -14,7 +14,7 @@ namespace {
 using testing::free_block_case;
 using testing::rod_case;
 
-const char* const kModels[] = {"paper", "paper_conservative", "finite_strain"};
+const char* const kModels[] = {"paper", "paper_conservative", "finite_strain", "linear_elastic"};
 
 double limit_of(const CaseSpec& spec) {
   Simulation sim(spec);
