@@ -93,7 +93,7 @@ void register_kernel_benchmarks() {
                                                     {Kernel::rigid_bodies, "rigid_bodies"}};
   for (const auto& [kernel, kernel_name] : kernels)
     for (const std::string& model : model_names()) {
-      if (kernel == Kernel::half_angles && model == "finite_strain") continue;  // no rotation
+      if (kernel == Kernel::half_angles && !model_info(model).uses_rotation) continue;
       for (long l0 : kSpacingsUm)
         for (int threads : bench_threads())
           benchmark::RegisterBenchmark(

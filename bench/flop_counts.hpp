@@ -22,6 +22,9 @@
 //                                    S A^-1 12, p 2; pass 1b: Q A^-1 12, S += 4
 //   force pass    per entry 34       (S_i + S_j) A^-1 r0 14, g_ij 16, f += h g 4
 //   integration   per particle 10    kick 6, drift 4
+// linear_elastic: as finite_strain but Hooke's law for the stress
+//                 per particle 59    F = G A^-1 12, det 3, eps 3, sigma 7, S = V sigma 4,
+//                                    S A^-1 12, strain and p 2; pass 1b: Q A^-1 12, S += 4
 // rigid bodies (any model) per particle of a body 26: momentum sums 14, placement 12
 #include <string>
 
@@ -36,6 +39,7 @@ struct FlopCounts {
 
 inline FlopCounts flop_counts(const std::string& model) {
   if (model == "finite_strain") return {0, 14 + 29, 78, 34, 0, 10};
+  if (model == "linear_elastic") return {0, 14 + 29, 59, 34, 0, 10};
   if (model == "paper_conservative") return {3, 27, 1, 38 + 18, 1, 18};
   return {3, 27, 1, 38, 1, 18};
 }
