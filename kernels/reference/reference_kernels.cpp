@@ -93,8 +93,35 @@ PaperResult paper_model(const ParticleStore& p, const BondTable& bonds, bool ene
   return out;
 }
 
-FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& bonds,
-                                       double hourglass, bool consistent) {
+GradientLaw neo_hookean_law() {
+  return {[](const Eigen::Matrix2d& f, double lambda, double mu) {
+            const Eigen::Matrix2d fit = f.inverse().transpose();
+            return Eigen::Matrix2d(mu * (f - fit) + lambda * std::log(f.determinant()) * fit);
+          },
+          [](const Eigen::Matrix2d& f, double lambda, double mu) {
+            const double log_j = std::log(f.determinant());
+            return 0.5 * mu * ((f.transpose() * f).trace() - 2.0) - mu * log_j +
+                   0.5 * lambda * log_j * log_j;
+          }};
+}
+
+GradientLaw hooke_law() {
+  auto strain = [](const Eigen::Matrix2d& f) {
+    return Eigen::Matrix2d(0.5 * (f + f.transpose()) - Eigen::Matrix2d::Identity());
+  };
+  return {
+      [strain](const Eigen::Matrix2d& f, double lambda, double mu) {
+        const Eigen::Matrix2d eps = strain(f);
+        return Eigen::Matrix2d(lambda * eps.trace() * Eigen::Matrix2d::Identity() + 2 * mu * eps);
+      },
+      [strain](const Eigen::Matrix2d& f, double lambda, double mu) {
+        const Eigen::Matrix2d eps = strain(f);
+        return 0.5 * lambda * eps.trace() * eps.trace() + mu * eps.array().square().sum();
+      }};
+}
+
+GradientResult corrected_gradient_model(const ParticleStore& p, const BondTable& bonds,
+                                        const GradientLaw& law, double hourglass, bool consistent) {
   using Eigen::Matrix2d;
   using Eigen::Vector2d;
   const std::size_t n = p.size();
@@ -111,7 +138,8 @@ FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& 
     return p.mu[i] * (3 * p.lambda[i] + 2 * p.mu[i]) / (p.lambda[i] + p.mu[i]);
   };
   std::vector<Matrix2d> a_inv(n), f(n), s(n);
-  FiniteStrainResult out;
+  GradientResult out;
+  out.piola.resize(n);
   out.def_grad.resize(4 * n);
   out.jacobian.resize(n);
   out.fx.assign(n, 0.0);
@@ -125,10 +153,10 @@ FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& 
     }
     a_inv[i] = a.inverse();
     f[i] = g * a_inv[i];
-    const double jac = f[i].determinant();
-    const Matrix2d fit = f[i].inverse().transpose();
-    s[i] = volume * (p.mu[i] * (f[i] - fit) + p.lambda[i] * std::log(jac) * fit);
-    out.jacobian[i] = jac;
+    out.piola[i] = law.piola(f[i], p.lambda[i], p.mu[i]);
+    s[i] = volume * out.piola[i];
+    out.energy += volume * law.energy_density(f[i], p.lambda[i], p.mu[i]);
+    out.jacobian[i] = f[i].determinant();
     for (int k = 0; k < 4; ++k)
       out.def_grad[4 * i + static_cast<std::size_t>(k)] = f[i](k / 2, k % 2);
   }
@@ -154,6 +182,7 @@ FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& 
       out.fy[i] += force.y();
       out.fx[j] -= force.x();
       out.fy[j] -= force.y();
+      out.energy += 0.5 * h(i, j) * gap(i, j).squaredNorm();
     }
   return out;
 }

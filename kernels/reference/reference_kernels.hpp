@@ -3,6 +3,8 @@
 // straight from the paper's Eq. 3-7 in acceleration form: a pair loop
 // (each bond once, i < j) that scatters to both ends, with trigonometric calls
 // per bond and explicit normal/shear split. Test oracles only.
+#include <Eigen/Dense>
+#include <functional>
 #include <vector>
 
 #include "src/core/bonds.hpp"
@@ -21,16 +23,31 @@ struct PaperResult {
 PaperResult paper_model(const ParticleStore& p, const BondTable& bonds,
                         bool energy_consistent = false);
 
-struct FiniteStrainResult {
-  std::vector<double> def_grad;  // row-major 2x2 per particle
-  std::vector<double> jacobian;
+// A material law on the corrected gradient, in Eigen: P(F) and W(F).
+struct GradientLaw {
+  std::function<Eigen::Matrix2d(const Eigen::Matrix2d& f, double lambda, double mu)> piola;
+  std::function<double(const Eigen::Matrix2d& f, double lambda, double mu)> energy_density;
+};
+GradientLaw neo_hookean_law();  // MODEL.md section 5
+GradientLaw hooke_law();        // MODEL.md section 7
+
+struct GradientResult {
+  std::vector<double> def_grad;        // row-major 2x2 per particle
+  std::vector<double> jacobian;        // det F
+  std::vector<Eigen::Matrix2d> piola;  // P(F_i)
   std::vector<double> fx, fy;
+  double energy = 0;  // sum_i V W(F_i) + sum over bonds of 1/2 h_ij |g_ij|^2
 };
 
-// MODEL.md section 5 with Eigen matrices and a pair loop that scatters each
-// bond's force to both ends; `consistent` adds the hourglass energy's
-// dependence on F (see kernels/finite_strain_model.hpp).
-FiniteStrainResult finite_strain_model(const ParticleStore& p, const BondTable& bonds,
-                                       double hourglass, bool consistent);
+// The corrected-gradient models (MODEL.md sections 5 and 7) with Eigen
+// matrices and a pair loop that scatters each bond's force to both ends;
+// `consistent` adds the hourglass energy's dependence on F.
+GradientResult corrected_gradient_model(const ParticleStore& p, const BondTable& bonds,
+                                        const GradientLaw& law, double hourglass, bool consistent);
+
+inline GradientResult finite_strain_model(const ParticleStore& p, const BondTable& bonds,
+                                          double hourglass, bool consistent) {
+  return corrected_gradient_model(p, bonds, neo_hookean_law(), hourglass, consistent);
+}
 
 }  // namespace mpsolid::reference

@@ -14,6 +14,7 @@
 
 #include "kernels/finite_strain_model.hpp"
 #include "kernels/linear_elastic_model.hpp"
+#include "kernels/reference/reference_kernels.hpp"
 #include "src/core/stability.hpp"
 #include "src/core/types.hpp"
 #include "src/solver/simulation.hpp"
@@ -34,77 +35,26 @@ struct Reference {
   double energy = 0;  // sum_i W_i + E_hg
 };
 
-// MODEL.md section 7 with Eigen matrices and a pair loop (each bond once,
-// i < j) that scatters each bond's force to both ends.
+// MODEL.md section 7 from the shared plain reference (Eigen, a pair loop
+// that scatters each bond's force to both ends) with Hooke's law, and the
+// outputs of section 7 from its F.
 Reference reference_linear_elastic(const ParticleStore& p, const BondTable& bonds, double alpha,
                                    bool consistent) {
-  const std::size_t n = p.size();
-  const double re = bonds.geometry.re, volume = bonds.geometry.volume;
-  const double n0 = number_density(bonds);
-  auto r0 = [&](std::size_t i, std::size_t j) {
-    return Vector2d(p.x0[j] - p.x0[i], p.y0[j] - p.y0[i]);
-  };
-  auto r = [&](std::size_t i, std::size_t j) { return Vector2d(p.x[j] - p.x[i], p.y[j] - p.y[i]); };
-  auto wl = [&](std::size_t i, std::size_t j) {
-    const double len = r0(i, j).norm();
-    return (re / len - 1.0) / (len * len);
-  };
-  auto young = [&](std::size_t i) {
-    const double lambda = p.lambda[i], mu = p.mu[i];
-    return mu * (3 * lambda + 2 * mu) / (lambda + mu);
-  };
-  auto h = [&](std::size_t i, std::size_t j) {
-    return alpha * 0.5 * (young(i) + young(j)) * volume * (2.0 / n0) * wl(i, j);
-  };
+  const reference::GradientResult r =
+      reference::corrected_gradient_model(p, bonds, reference::hooke_law(), alpha, consistent);
   Reference out;
-  std::vector<Matrix2d> a_inv(n), s(n);
-  out.def_grad.resize(n);
-  out.stress.resize(n);
-  out.strain.resize(n);
-  out.pressure.resize(n);
-  out.fx.assign(n, 0.0);
-  out.fy.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    Matrix2d a = Matrix2d::Zero(), g = Matrix2d::Zero();
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const std::size_t j = bonds.neighbor[b];
-      a += wl(i, j) * r0(i, j) * r0(i, j).transpose();
-      g += wl(i, j) * r(i, j) * r0(i, j).transpose();
-    }
-    a_inv[i] = a.inverse();
-    const Matrix2d f = g * a_inv[i];
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    Matrix2d f;
+    f << r.def_grad[4 * i], r.def_grad[4 * i + 1], r.def_grad[4 * i + 2], r.def_grad[4 * i + 3];
     const Matrix2d eps = 0.5 * (f + f.transpose()) - Matrix2d::Identity();
-    const double lambda = p.lambda[i], mu = p.mu[i];
-    const Matrix2d sigma = lambda * eps.trace() * Matrix2d::Identity() + 2 * mu * eps;
-    out.def_grad[i] = f;
-    out.stress[i] = sigma;
-    out.strain[i] = eps.trace();
-    out.pressure[i] = -0.5 * sigma.trace();
-    out.energy +=
-        volume * (0.5 * lambda * eps.trace() * eps.trace() + mu * (eps.array().square().sum()));
-    s[i] = volume * sigma;
+    out.def_grad.push_back(f);
+    out.stress.push_back(r.piola[i]);
+    out.strain.push_back(eps.trace());
+    out.pressure.push_back(-0.5 * r.piola[i].trace());
   }
-  auto gap = [&](std::size_t i, std::size_t j) {
-    return Vector2d(r(i, j) - 0.5 * (out.def_grad[i] + out.def_grad[j]) * r0(i, j));
-  };
-  if (consistent)
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const std::size_t j = bonds.neighbor[b];
-        s[i] += -0.5 * h(i, j) * gap(i, j) * r0(i, j).transpose();
-      }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const std::size_t j = bonds.neighbor[b];
-      if (j < i) continue;
-      const Vector2d force =
-          wl(i, j) * (s[i] * a_inv[i] + s[j] * a_inv[j]) * r0(i, j) + h(i, j) * gap(i, j);
-      out.fx[i] += force.x();
-      out.fy[i] += force.y();
-      out.fx[j] -= force.x();
-      out.fy[j] -= force.y();
-      out.energy += 0.5 * h(i, j) * gap(i, j).squaredNorm();
-    }
+  out.fx = r.fx;
+  out.fy = r.fy;
+  out.energy = r.energy;
   return out;
 }
 
