@@ -1,6 +1,7 @@
 #include "tests/support/test_cases.hpp"
 
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
@@ -46,6 +47,17 @@ y = [{y0}, {y1}]
                         fmt::arg("x0", -3 * l0), fmt::arg("y0", -2 * l0),
                         fmt::arg("y1", (ny + 2) * l0));
   return load_case_text(text, "free_block.toml", {"model=" + model});
+}
+
+int expect_interior_force_free(const ParticleStore& p, double l0, double tolerance) {
+  int interior = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.x0[i] > 4 * l0 && p.x0[i] < 8 * l0 && p.y0[i] > 4 * l0 && p.y0[i] < 7 * l0) {
+      ++interior;
+      EXPECT_NEAR(p.fx[i], 0.0, tolerance) << "particle " << p.id[i];
+      EXPECT_NEAR(p.fy[i], 0.0, tolerance) << "particle " << p.id[i];
+    }
+  return interior;
 }
 
 double max_abs(const std::vector<double>& v) {

@@ -18,6 +18,11 @@ CaseSpec rod_case(const std::vector<std::string>& overrides = {});
 CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt = 1e-7,
                          const std::string& model = "paper");
 
+// Under a homogeneous stress, the particles whose neighbours all have full
+// neighbourhoods (4 l0 from every surface of a 12 x 11 free block) feel no
+// net force: checks |f| <= tolerance there and returns how many there are.
+int expect_interior_force_free(const ParticleStore& p, double l0, double tolerance);
+
 // Largest magnitude in v (0 for an empty v).
 double max_abs(const std::vector<double>& v);
 
