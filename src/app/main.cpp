@@ -6,23 +6,49 @@
 
 #include <exception>
 
+#include "build_info.hpp"
 #include "src/app/progress.hpp"
 #include "src/app/run.hpp"
 #include "src/app/signals.hpp"
+#include "src/app/thread_choice.hpp"
 #include "src/core/parallel.hpp"
 #include "src/solver/case_loader.hpp"
+
+namespace {
+std::string version_text() {
+  using namespace mpsolid;
+#ifdef _OPENMP
+  const std::string openmp = fmt::format("OpenMP {} ({} cores)", _OPENMP, available_cores());
+#else
+  const std::string openmp = "no OpenMP";
+#endif
+  return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; MPI: not in this build",
+                     build_info::version, build_info::git_commit, build_info::compiler,
+                     build_info::build_type, build_info::cxx_flags, openmp);
+}
+
+// The thread count, with a warning on stderr when it exceeds the cores.
+int chosen_threads(int requested) {
+  using namespace mpsolid;
+  const ThreadChoice choice = choose_threads(requested, available_cores());
+  if (!choice.warning.empty()) fmt::print(stderr, "mpsolid: warning: {}\n", choice.warning);
+  return choice.threads;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace mpsolid;
   CLI::App app{"mpsolid: elastic MPS solver for shock-loaded elastic bodies (2D plane strain)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text());
   std::string case_path, out_dir;
   int threads = 0;
   std::vector<std::string> overrides;
   CLI::App* run = app.add_subcommand("run", "run a case file");
   run->add_option("case", case_path, "case file (TOML)")->required();
   run->add_option("--out", out_dir, "output folder (default: out/<case name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+  run->add_option("--threads", threads,
+                  "OpenMP threads (default: OMP_NUM_THREADS if set, else all cores)")
       ->check(CLI::Range(1, 4096));
   run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
       ->type_name("KEY=VALUE");
@@ -30,7 +56,9 @@ int main(int argc, char** argv) {
   CLI::App* resume = app.add_subcommand(
       "resume", "continue a run from its last checkpoint (DIR/checkpoint.h5), to the same bits");
   resume->add_option("dir", resume_dir, "the run's output folder")->required();
-  resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+  resume
+      ->add_option("--threads", threads,
+                   "OpenMP threads (default: OMP_NUM_THREADS if set, else all cores)")
       ->check(CLI::Range(1, 4096));
   resume
       ->add_option("--set", overrides,
@@ -41,6 +69,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
@@ -54,7 +84,7 @@ int main(int argc, char** argv) {
     if (resume->parsed()) {
       RunOptions options;
       options.out_dir = resume_dir;
-      options.threads = threads > 0 ? threads : available_cores();
+      options.threads = chosen_threads(threads);
       options.progress = stderr_is_terminal();
       options.command_line = command_line;
       return resume_run(overrides, options);
@@ -63,7 +93,7 @@ int main(int argc, char** argv) {
     RunOptions options;
     options.out_dir =
         out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);
-    options.threads = threads > 0 ? threads : available_cores();
+    options.threads = chosen_threads(threads);
     options.progress = stderr_is_terminal();
     options.command_line = command_line;
     return run_case(spec, options);

@@ -15,6 +15,7 @@
 #include "src/core/state_snapshot.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/io/folder_lock.hpp"
 #include "src/io/run_folder.hpp"
 #include "src/io/run_report.hpp"
 #include "src/solver/case_loader.hpp"
@@ -239,6 +240,7 @@ int exit_code(const Simulation& sim, const RunFacts& facts, const RunOptions& op
 // The run with outputs: steps to the end, then the closing files and summary.
 int run_loop(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
              bool fresh) {
+  for (const std::string& note : sim.spec().notes) fmt::print(stderr, "mpsolid: note: {}\n", note);
   step_to_end(sim, outputs, facts, options, fresh);
   finish_run(sim, outputs, facts, options);
   return exit_code(sim, facts, options);
@@ -255,12 +257,19 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   facts.command_line = options.command_line;
   facts.threads = thread_count();
   Simulation sim(spec);
+  prepare_output_folder(options.out_dir);
+  FolderLock lock(options.out_dir);
   RunFolder outputs(options.out_dir, sim.state(), sim.spec());
+  lock.record_owner();
   return run_loop(sim, outputs, facts, options, true);
 }
 
 int resume_run(const std::vector<std::string>& overrides, const RunOptions& options) {
   const std::filesystem::path path = RunFolder::checkpoint_path(options.out_dir);
+  // Another process's run is not to be read while it writes (a missing folder
+  // is read_checkpoint's to report).
+  std::optional<FolderLock> lock;
+  if (std::filesystem::is_directory(options.out_dir)) lock.emplace(options.out_dir);
   for (const std::string& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
     if (std::find(kResumeKeys.begin(), kResumeKeys.end(), key) == kResumeKeys.end())
@@ -299,6 +308,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
     clean_up();  // a refused resume leaves the folder as it was
     throw;
   }
+  if (lock) lock->record_owner();
   return run_loop(sim, *outputs, facts, options, false);
 }
 

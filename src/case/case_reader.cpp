@@ -355,6 +355,7 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_stability(top, c);
   read_numerics(top, c);
   top.finish();
+  if (!c.dt_auto) c.notes = c.check_step_grid();
   c.resolved_toml = resolved_case_toml(c);
   return c;
 }
@@ -377,6 +378,11 @@ CaseSpec parse_case(const std::string& toml_text, const std::string& source_name
 
 CaseSpec read_case(const std::string& path, const std::vector<std::string>& overrides,
                    const std::vector<ModelInfo>& models) {
+  if (std::filesystem::is_directory(path))
+    throw InputError(
+        fmt::format("{}: is a folder, not a case file (give the .toml file, e.g. "
+                    "cases/shock_rod.toml)",
+                    path));
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(fmt::format(

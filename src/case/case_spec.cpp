@@ -41,6 +41,46 @@ std::int64_t CaseSpec::steps_per_history() const {
   return std::min(steps_per_frame(), steps_in(history_interval, dt));
 }
 
+namespace {
+bool whole_steps(double ratio) {
+  return std::abs(ratio - std::round(ratio)) <= 1e-9 * std::max(1.0, ratio);
+}
+}  // namespace
+
+std::vector<std::string> CaseSpec::check_step_grid() const {
+  struct Span {
+    const char* key;
+    double seconds;
+  };
+  const Span spans[] = {{"time.end", end},
+                        {"output.frame_interval", frame_interval},
+                        {"output.history_interval", history_interval},
+                        {"output.checkpoint_interval", checkpoint_interval}};
+  for (const Span& span : spans)
+    if (!(span.seconds / dt <= kMaxSteps))
+      throw InputError(fmt::format(
+          "{}: {} = {:.6g} s is {:.3g} steps of dt = {:.6g} s, more than a run can count exactly "
+          "(at most 2^53 = {:.3g} steps): give {} <= {:.6g} s or a larger dt",
+          source, span.key, span.seconds, span.seconds / dt, dt, kMaxSteps, span.key,
+          kMaxSteps * dt));
+  std::vector<std::string> found;
+  if (const double ratio = end / dt; !whole_steps(ratio))
+    found.push_back(fmt::format(
+        "time.end = {:.9g} s is {:.9g} steps of dt = {:.9g} s: the run ends at the next whole "
+        "step, {} (t = {:.9g} s)",
+        end, ratio, dt, step_count(), time_at(step_count())));
+  const auto interval_note = [&](const char* key, double seconds, std::int64_t steps,
+                                 const char* what) {
+    if (seconds <= 0 || whole_steps(seconds / dt)) return;
+    found.push_back(
+        fmt::format("{} = {:.9g} s is {:.9g} steps of dt = {:.9g} s: {} every {} steps ({:.9g} s)",
+                    key, seconds, seconds / dt, dt, what, steps, time_at(steps)));
+  };
+  interval_note("output.frame_interval", frame_interval, steps_per_frame(), "frames");
+  interval_note("output.history_interval", history_interval, steps_per_history(), "history rows");
+  return found;
+}
+
 void CaseSpec::set_auto_time_step(double limit, double omega_max) {
   // The finest output interval becomes a whole number of steps, so outputs
   // fall on the requested times whatever step is chosen.
@@ -56,6 +96,7 @@ void CaseSpec::set_auto_time_step(double limit, double omega_max) {
       dt, dt_safety, limit, omega_max);
   resolved_toml += resolved_case_toml(*this);
   if (checkpoint_interval > 0) checkpoint_interval = std::max(checkpoint_interval, dt);
+  notes = check_step_grid();
 }
 
 }  // namespace mpsolid

@@ -65,6 +65,10 @@ struct StabilitySpec {
   double min_jacobian = 0.1;          // J = det F at or below this: a collapsed neighbourhood
 };
 
+// The most steps a run may count: step k's time k dt and every cadence stay
+// exact in a double (2^53).
+inline constexpr double kMaxSteps = 9007199254740992.0;
+
 struct CaseSpec {
   std::string name;    // output folder name (default: the file's stem)
   std::string source;  // the case file it came from
@@ -96,12 +100,21 @@ struct CaseSpec {
   // lattice, not bit-identical to IEEE in the far field (below 1e-270).
   bool flush_subnormals = false;
   std::string resolved_toml;  // the case with every default and override filled in
+  // What the reader rounded to whole steps, in words (printed before a run
+  // and kept in run.json): an end or interval that is not a multiple of dt.
+  std::vector<std::string> notes;
 
   double time_at(std::int64_t step) const { return static_cast<double>(step) * dt; }
   std::int64_t step_count() const;            // steps to reach `end`
   std::int64_t steps_per_frame() const;       // output cadence in steps
   std::int64_t steps_per_history() const;     // history.csv cadence in steps
   std::int64_t steps_per_checkpoint() const;  // checkpoint cadence in steps; 0: none
+  // Checks every number that becomes a step count once dt is known: throws
+  // InputError for a count a run cannot reach exactly (over kMaxSteps), and
+  // returns a note for the end and each output interval that is not a whole
+  // number of steps, saying how it is rounded (checkpoints, which change no
+  // result, are rounded down without a note).
+  std::vector<std::string> check_step_grid() const;
   // An automatic step, once chosen: sets dt (rounded down so that the finest
   // output interval is a whole number of steps) and notes it in resolved_toml.
   void set_auto_time_step(double limit, double omega_max);

@@ -18,6 +18,22 @@ double as_number(const TomlValue& v) {
 std::string detail(const std::string& what) {
   return what.empty() ? "" : " (" + what + ")";
 }
+// Levenshtein distance: how many single-character edits turn a into b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
 std::string type_name(const TomlValue& v) {
   std::ostringstream s;
   s << v.type();
@@ -71,8 +87,15 @@ bool TableReader::has(const std::string& key) {
 
 const TomlValue& TableReader::require(const std::string& key, const std::string& what) {
   const TomlValue* v = find(key);
-  if (!v) throw InputError(fmt::format("{}: {} is missing ({})", file_, key_path(key), what));
-  return *v;
+  if (v) return *v;
+  // A key that is here but asked for by no one is likely the missing one, mistyped.
+  std::string hint;
+  for (const auto& [present, value] : table_.as_table())
+    if (std::find(asked_.begin(), asked_.end(), present) == asked_.end() &&
+        edit_distance(present, key) <= std::max<std::size_t>(1, key.size() / 3))
+      hint += fmt::format("; {} has '{}', which is not a key here: a typo for '{}'?",
+                          origin(value, file_), key_path(present), key);
+  throw InputError(fmt::format("{}: {} is missing ({}){}", file_, key_path(key), what, hint));
 }
 
 double TableReader::number(const TomlValue& v, const std::string& key,

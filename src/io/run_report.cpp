@@ -96,6 +96,7 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                              {"omega_max", e.omega_max},
                              {"iterations", e.iterations},
                              {"converged", e.converged}};
+  if (!in.spec.notes.empty()) report["notes"] = in.spec.notes;
   if (!facts.diagnosis_json.is_null()) report["diagnosis"] = facts.diagnosis_json;
   return report.dump(2) + "\n";
 }

@@ -315,6 +315,111 @@ if [[ -f "$OUT/case.resolved.toml" ]]; then
   fi
 fi
 
+# ---- (e) the command line and the run folder ------------------------------------
+
+mp version --version
+if [[ $rc -eq 0 ]] && grep -q '^mpsolid [0-9]' "$TMP/version.out" && grep -q 'git ' "$TMP/version.out" &&
+  grep -q 'OpenMP' "$TMP/version.out" && grep -q 'MPI' "$TMP/version.out"; then
+  ok "version: --version names the version, commit, compiler, OpenMP and MPI"
+else
+  fail "version: exit $rc"
+  show version
+fi
+
+expect_bad_input case_is_folder "is a folder, not a case file" -- run cases --out "$SEEDED"
+expect_bad_input end_overflows "time.end" "2^53" "steps" -- \
+  run "$CASE" --set time.end=1e11 --out "$SEEDED" --threads 2
+sed 's/^l0 = /lo = /' "$CASE" >"$TMP/typo.toml"
+expect_bad_input typo_hint "l0 is missing" "'lo'" "a typo for 'l0'" -- \
+  run "$TMP/typo.toml" --out "$SEEDED"
+touch "$TMP/a_file"
+mp out_is_file run "$CASE" --set time.end=1e-7 --out "$TMP/a_file" --threads 1
+if [[ $rc -eq 2 ]] && grep -qF "output folder is a file" "$TMP/out_is_file.err"; then
+  ok "out_is_file: exit 2, the folder named"
+else
+  fail "out_is_file: exit $rc"
+  show out_is_file
+fi
+mkdir -p "$TMP/read_only" && chmod 555 "$TMP/read_only"
+mp out_uncreatable run "$CASE" --set time.end=1e-7 --out "$TMP/a_file/sub" --threads 1
+if [[ $rc -eq 2 ]] && grep -qF "cannot create the output folder" "$TMP/out_uncreatable.err"; then
+  ok "out_uncreatable: exit 2, the folder named"
+else
+  fail "out_uncreatable: exit $rc"
+  show out_uncreatable
+fi
+
+# Threads: OMP_NUM_THREADS is the default; a bad one is bad input; more
+# threads than cores are warned about.
+OMP_NUM_THREADS=abc mp omp_bad run "$CASE" --set time.end=1e-7 --out "$TMP/omp_bad"
+if [[ $rc -eq 2 ]] && grep -qF "OMP_NUM_THREADS = 'abc'" "$TMP/omp_bad.err"; then
+  ok "omp_bad: a bad OMP_NUM_THREADS is exit 2"
+else
+  fail "omp_bad: exit $rc"
+  show omp_bad
+fi
+OMP_NUM_THREADS=1 mp omp_one run "$CASE" --set time.end=1e-7 --out "$TMP/omp_one"
+if [[ $rc -eq 0 ]] && python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["threads"] != 1)' \
+  "$TMP/omp_one/run.json"; then
+  ok "omp_one: OMP_NUM_THREADS=1 runs 1 thread"
+else
+  fail "omp_one: exit $rc or run.json threads != 1"
+  show omp_one
+fi
+cores=$(nproc)
+mp oversubscribed run "$CASE" --set time.end=1e-7 --out "$TMP/oversubscribed" --threads $((cores + 1))
+if [[ $rc -eq 0 ]] && grep -qF "warning: $((cores + 1)) threads" "$TMP/oversubscribed.err"; then
+  ok "oversubscribed: more threads than cores are warned about"
+else
+  fail "oversubscribed: exit $rc, or no warning"
+  show oversubscribed
+fi
+
+# Output times that are not whole steps are rounded with a note, kept in run.json.
+mp notes run "$CASE" --set time.end=2.5e-7 --set output.frame_interval=1.05e-7 --out "$TMP/notes" \
+  --threads 1
+if [[ $rc -eq 0 ]] && grep -qF "note: output.frame_interval = 1.05e-07 s is 10.5 steps" "$TMP/notes.err" &&
+  python3 -c 'import json,sys; sys.exit(not any("frame_interval" in n for n in json.load(open(sys.argv[1]))["notes"]))' \
+    "$TMP/notes/run.json"; then
+  ok "notes: a frame interval off the step grid is rounded with a note (stderr and run.json)"
+else
+  fail "notes: exit $rc, or no note"
+  show notes
+fi
+
+# Two runs into one folder: the second (and a resume) is refused naming the
+# owner, and the first completes with readable results.
+LOCKED=$TMP/locked
+timeout 300 "$BIN" run "$CASE" --set time.end=4e-4 --out "$LOCKED" --threads 1 \
+  </dev/null >"$TMP/first.out" 2>"$TMP/first.err" &
+first=$!
+for _ in $(seq 100); do [[ -s "$LOCKED/.owner" ]] && break; sleep 0.05; done
+mp second run "$CASE" --set time.end=1e-7 --out "$LOCKED" --threads 1
+second_rc=$rc
+mp second_resume resume "$LOCKED"
+resume_rc=$rc
+wait $first
+first_rc=$?
+if [[ $second_rc -eq 2 ]] && grep -qE "in use by another mpsolid run \(pid [0-9]+ on host $(hostname)" "$TMP/second.err" &&
+  [[ $resume_rc -eq 2 ]] && grep -qF "in use by another mpsolid run" "$TMP/second_resume.err"; then
+  ok "locked: a second run and a resume into a busy folder exit 2 naming the owner's pid and host"
+else
+  fail "locked: second run exit $second_rc, resume exit $resume_rc"
+  show second
+  show second_resume
+fi
+if [[ $first_rc -eq 0 ]] && [[ ! -e "$LOCKED/.owner" ]] &&
+  python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["outcome"] != "completed")' \
+    "$LOCKED/run.json" &&
+  [[ $(wc -l <"$LOCKED/history.csv") -eq 3 ]] && ! grep -qaP '\x00' "$LOCKED/history.csv" &&
+  /usr/bin/python3 -c 'import h5py,sys; f=h5py.File(sys.argv[1]); sys.exit(len(f["frames"]) != 2)' \
+    "$LOCKED/frames.h5" 2>/dev/null; then
+  ok "locked: the first run completed with intact results and released the folder"
+else
+  fail "locked: the first run's results are not intact (exit $first_rc)"
+  cat "$TMP/first.err" | head -5
+fi
+
 # A good run into the seeded folder replaces the old history.csv.
 mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
   --threads 2

@@ -198,6 +198,36 @@ TEST(CaseErrors, ModelOptionsTakeDefaultsAndReadBack) {
   EXPECT_TRUE(paper.model_options.numbers.empty());
 }
 
+// ---- step counts ----------------------------------------------------------------
+
+TEST(CaseErrors, StepCountsThatOverflowAreRefusedWithWhatWouldWork) {
+  EXPECT_INPUT_ERROR(base_toml(), {"bad.toml", "time.end = 1e+11 s", "2^53", "time.end <="},
+                     {"time.end=1e11"});
+  EXPECT_INPUT_ERROR(base_toml(), {"output.frame_interval", "2^53"}, {"output.frame_interval=1e9"});
+}
+
+TEST(CaseErrors, EndsAndIntervalsOffTheStepGridAreRoundedWithANote) {
+  EXPECT_TRUE(load_case_text(base_toml(), "bad.toml").notes.empty());
+  const CaseSpec spec =
+      load_case_text(base_toml(), "bad.toml", {"time.end=2.5e-7", "output.frame_interval=1.05e-7"});
+  EXPECT_EQ(spec.step_count(), 25);
+  EXPECT_EQ(spec.steps_per_frame(), 10);
+  ASSERT_EQ(spec.notes.size(), 2u);  // frames and history rows (the default: the frame interval)
+  EXPECT_NE(spec.notes[0].find("frames every 10 steps"), std::string::npos) << spec.notes[0];
+  const CaseSpec late = load_case_text(base_toml(), "bad.toml", {"time.end=1.005e-6"});
+  ASSERT_FALSE(late.notes.empty());
+  EXPECT_NE(late.notes[0].find("the next whole step, 101"), std::string::npos) << late.notes[0];
+}
+
+TEST(CaseErrors, AMissingKeyNamesTheLikelyTypo) {
+  EXPECT_INPUT_ERROR(edit("l0 = 0.002", "lo = 0.002"),
+                     {"bad.toml", "l0 is missing", "bad.toml:", "'lo'", "a typo for 'l0'"});
+  // No hint when nothing is close.
+  const auto message = error_of(edit("l0 = 0.002", "spacing = 0.002"));
+  ASSERT_TRUE(message.has_value());
+  EXPECT_EQ(message->find("typo"), std::string::npos) << *message;
+}
+
 TEST(CaseErrors, FlushSubnormalsIsABoolean) {
   EXPECT_INPUT_ERROR(base_toml() + "\n[numerics]\nflush_subnormals = 1\n",
                      {"bad.toml", "numerics.flush_subnormals", "true or false"});
@@ -500,6 +530,8 @@ TEST(CaseErrors, DirectoryInsteadOfAFile) {
     FAIL() << "read_case accepted a directory";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is a folder, not a case file"), std::string::npos)
+        << e.what();
   }
 }
 
