@@ -106,6 +106,7 @@ def run_lammps(folder, threads, openmp):
 
 def run_mpsolid(exe, folder, l0, steps, threads):
     end = steps * DT
+    shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
     run([exe, "run", CASE, "--out", folder, "--threads", threads, "--set", f"l0={l0!r}",
          "--set", f"time.end={end!r}",
          # One frame at the start and one at the end, checkpoints only at the ends.

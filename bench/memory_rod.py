@@ -55,6 +55,7 @@ def mem_total():
 
 def measure(exe, l0, steps, threads, folder):
     end = steps * DT
+    shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
     cmd = [str(exe), "run", str(CASE), "--out", str(folder), "--threads", str(threads),
            "--set", f"l0={l0!r}", "--set", f"time.end={end!r}",
            "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"]

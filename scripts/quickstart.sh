@@ -15,7 +15,8 @@ jobs=$(nproc)
 cmake --preset release
 cmake --build --preset release -j "$jobs"
 if [ "$what" = paper ]; then
-  ./build/release/mpsolid run cases/shock_rod.toml --out out/shock_rod
+  # --force: running the quick start again replaces the previous results.
+  ./build/release/mpsolid run cases/shock_rod.toml --out out/shock_rod --force
   # The pictures: out/shock_rod/frames.png and history.png (Debian's python3).
   /usr/bin/python3 tools/plot.py out/shock_rod
 else

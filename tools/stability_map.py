@@ -16,6 +16,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -47,6 +48,7 @@ def run_cell(args, model, l0_mm, force_kn, dt):
                "--set", f"time.dt={dt:.6g}", "--set", f"time.end={args.end:.6g}",
                "--set", f"output.frame_interval={max(args.end / 10, dt):.6g}",
                "--set", f"stability.check_interval={interval}"]
+        shutil.rmtree(out, ignore_errors=True)  # an unfinished cell is run afresh
         subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
     with open(report) as f:
         r = json.load(f)

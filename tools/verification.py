@@ -24,6 +24,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tomllib
@@ -60,6 +61,7 @@ class Run:
         if getattr(args, "cached_only", False):
             return out if finished(out) else None
         if args.fresh or not finished(out):
+            shutil.rmtree(out, ignore_errors=True)  # this script owns the folder: a fresh run
             done = subprocess.run(self.command(args, out), capture_output=True, text=True)
             if done.returncode not in self.ok_codes:
                 raise RuntimeError(f"{self.tag}: mpsolid exited {done.returncode}:\n{done.stderr}")

@@ -46,11 +46,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   CLI::App* run = app.add_subcommand("run", "run a case file");
   run->add_option("case", case_path, "case file (TOML)")->required();
-  run->add_option("--out", out_dir, "output folder (default: out/<case name>)");
+  run->add_option("--out", out_dir,
+                  "output folder (default: out/<case name>, plus a hash of the --set values)");
+  bool force = false;
+  run->add_flag("--force", force, "replace the results of an earlier run in the output folder");
   run->add_option("--threads", threads,
                   "OpenMP threads (default: OMP_NUM_THREADS if set, else all cores)")
       ->check(CLI::Range(1, 4096));
   run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
+      ->allow_extra_args(false)
       ->type_name("KEY=VALUE");
   std::string resume_dir;
   CLI::App* resume = app.add_subcommand(
@@ -64,6 +68,7 @@ int main(int argc, char** argv) {
       ->add_option("--set", overrides,
                    "go on to a later end: --set time.end=0.02 (also output.checkpoint_interval, "
                    "output.compression)")
+      ->allow_extra_args(false)
       ->type_name("KEY=VALUE");
 
   try {
@@ -87,12 +92,15 @@ int main(int argc, char** argv) {
       options.threads = chosen_threads(threads);
       options.progress = stderr_is_terminal();
       options.command_line = command_line;
+      options.overrides = overrides;
       return resume_run(overrides, options);
     }
     const CaseSpec spec = load_case(case_path, overrides);
     RunOptions options;
     options.out_dir =
-        out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);
+        out_dir.empty() ? default_out_dir(spec.name, overrides) : std::filesystem::path(out_dir);
+    options.force = force;
+    options.overrides = overrides;
     options.threads = chosen_threads(threads);
     options.progress = stderr_is_terminal();
     options.command_line = command_line;

@@ -11,6 +11,7 @@
 
 #include "src/app/progress.hpp"
 #include "src/app/signals.hpp"
+#include "src/core/hash.hpp"
 #include "src/core/parallel.hpp"
 #include "src/core/state_snapshot.hpp"
 #include "src/io/atomic_file.hpp"
@@ -251,14 +252,31 @@ const std::vector<std::string> kResumeKeys = {"time.end", "output.checkpoint_int
                                               "output.compression"};
 }  // namespace
 
+std::filesystem::path default_out_dir(const std::string& case_name,
+                                      const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return std::filesystem::path("out") / case_name;
+  Fnv1a h;
+  for (const std::string& o : overrides) h.text(o);
+  return std::filesystem::path("out") /
+         fmt::format("{}-{:08x}", case_name,
+                     static_cast<std::uint32_t>(h.value() ^ (h.value() >> 32)));
+}
+
 int run_case(const CaseSpec& spec, const RunOptions& options) {
   set_thread_count(options.threads);
   RunFacts facts;
   facts.command_line = options.command_line;
+  facts.overrides = options.overrides;
   facts.threads = thread_count();
   Simulation sim(spec);
   prepare_output_folder(options.out_dir);
   FolderLock lock(options.out_dir);
+  if (const std::string earlier = earlier_results(options.out_dir);
+      !earlier.empty() && !options.force)
+    throw InputError(fmt::format(
+        "{} holds the results of an earlier run ({}); give --force to replace them, --out for "
+        "another folder, or continue a stopped run with: mpsolid resume {}",
+        options.out_dir.string(), earlier, options.out_dir.string()));
   RunFolder outputs(options.out_dir, sim.state(), sim.spec());
   lock.record_owner();
   return run_loop(sim, outputs, facts, options, true);
@@ -293,6 +311,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   set_thread_count(options.threads);
   RunFacts facts;
   facts.command_line = options.command_line;
+  facts.overrides = options.overrides;
   facts.threads = thread_count();
   facts.start_step = checkpoint.step;
   Simulation sim(spec);

@@ -14,8 +14,15 @@ struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 1;
   bool progress = false;
+  bool force = false;  // replace an earlier run's results in out_dir
   std::string command_line;
+  std::vector<std::string> overrides;  // the --set values, for run.json
 };
+
+// out/<case name>, with a short hash of the overrides when there are any, so
+// runs of one case with different --set land in different folders.
+std::filesystem::path default_out_dir(const std::string& case_name,
+                                      const std::vector<std::string>& overrides);
 
 // kExitStopped: a stop signal (SIGINT, SIGTERM) ended the run after writing a
 // checkpoint and the outputs; `mpsolid resume` continues it.

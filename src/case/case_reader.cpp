@@ -299,7 +299,13 @@ void read_model_sections(TableReader& top, const std::vector<ModelInfo>& models,
       values.numbers[o.key] = v;
     }
     r.finish();
-    if (model.section == c.model_section) c.model_options = values;
+    if (model.section == c.model_section)
+      c.model_options = values;
+    else
+      c.notes.push_back(
+          fmt::format("[{}] sets options of model {}; this case runs model {}, so "
+                      "they do not apply",
+                      model.section, model.name, c.model));
   }
 }
 
@@ -355,7 +361,8 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_stability(top, c);
   read_numerics(top, c);
   top.finish();
-  if (!c.dt_auto) c.notes = c.check_step_grid();
+  if (!c.dt_auto)
+    for (std::string& note : c.check_step_grid()) c.notes.push_back(std::move(note));
   c.resolved_toml = resolved_case_toml(c);
   return c;
 }

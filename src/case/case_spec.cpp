@@ -96,7 +96,7 @@ void CaseSpec::set_auto_time_step(double limit, double omega_max) {
       dt, dt_safety, limit, omega_max);
   resolved_toml += resolved_case_toml(*this);
   if (checkpoint_interval > 0) checkpoint_interval = std::max(checkpoint_interval, dt);
-  notes = check_step_grid();
+  for (std::string& note : check_step_grid()) notes.push_back(std::move(note));
 }
 
 }  // namespace mpsolid

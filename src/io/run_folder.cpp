@@ -1,9 +1,11 @@
 #include "src/io/run_folder.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <random>
 
 #include "build_info.hpp"
@@ -50,6 +52,25 @@ const std::filesystem::path& check_same_run(const std::filesystem::path& dir,
   return dir;
 }
 }  // namespace
+
+std::string earlier_results(const std::filesystem::path& dir) {
+  std::vector<std::string> present;
+  for (const char* name : {"history.csv", "frames.h5", "checkpoint.h5", "run.json"})
+    if (std::filesystem::exists(dir / name)) present.push_back(name);
+  if (present.empty()) return "";
+  std::string text = fmt::format("{}", fmt::join(present, ", "));
+  try {
+    std::ifstream in(dir / "run.json");
+    const Json report = Json::parse(in);
+    text += fmt::format("; run.json: case {}, model {}, {} at step {}",
+                        report.at("case").get<std::string>(), report.at("model").get<std::string>(),
+                        report.at("outcome").get<std::string>(),
+                        report.at("final_step").get<std::int64_t>());
+  } catch (const std::exception&) {
+    // No readable run.json: the file names say enough.
+  }
+  return text;
+}
 
 RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
                      const CaseSpec& spec)

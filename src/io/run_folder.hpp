@@ -22,6 +22,11 @@
 
 namespace mpsolid {
 
+// The results of an earlier run in `dir` (history.csv, frames.h5,
+// checkpoint.h5, run.json: those present), in words for a refusal; empty if
+// there are none.
+std::string earlier_results(const std::filesystem::path& dir);
+
 class RunFolder {
  public:
   // A fresh run in `dir` (created if needed).

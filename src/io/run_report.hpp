@@ -29,6 +29,7 @@ bool stopped_by_signal(Outcome outcome);
 
 struct RunFacts {
   std::string command_line;
+  std::vector<std::string> overrides;  // --set values of this segment
   int threads = 1;
   std::int64_t steps = 0;  // steps advanced in this run
   double wall_seconds = 0;

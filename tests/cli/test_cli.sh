@@ -420,9 +420,50 @@ else
   cat "$TMP/first.err" | head -5
 fi
 
-# A good run into the seeded folder replaces the old history.csv.
-mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
+# A run into a folder with an earlier run's results is refused (naming them)
+# unless --force, which replaces them.
+mp seeded_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
   --threads 2
+if [[ $rc -eq 2 ]] && grep -qF "holds the results of an earlier run (history.csv)" \
+  "$TMP/seeded_no_force.err" && grep -qF -- "--force" "$TMP/seeded_no_force.err" &&
+  [[ "$(snapshot "$SEEDED")" == "$SEEDED_BEFORE" ]]; then
+  ok "seeded_no_force: exit 2 naming the earlier results and --force; the folder untouched"
+else
+  fail "seeded_no_force: exit $rc, or the folder changed"
+  show seeded_no_force
+fi
+mp repeat_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$OUT" \
+  --threads 2
+if [[ $rc -eq 2 ]] && grep -qF "run.json: case shock_rod, model paper, completed at step 2000" \
+  "$TMP/repeat_no_force.err"; then
+  ok "repeat_no_force: a second run into a finished run's folder is refused, naming what is there"
+else
+  fail "repeat_no_force: exit $rc"
+  show repeat_no_force
+fi
+
+# --set in the folder name: runs of one case with other overrides do not collide.
+(cd "$TMP" && timeout 300 "$BIN" run "$OLDPWD/$CASE" --set time.end=1e-7 --threads 1 \
+  </dev/null >/dev/null 2>&1 &&
+  timeout 300 "$BIN" run "$OLDPWD/$CASE" --set time.end=2e-7 --threads 1 </dev/null >/dev/null 2>&1)
+folders=$(cd "$TMP/out" 2>/dev/null && ls -d shock_rod-* 2>/dev/null | wc -l)
+if [[ $folders -eq 2 ]] && /usr/bin/python3 -c '
+import glob, json, sys
+sets = sorted(tuple(json.load(open(f))["overrides"]) for f in glob.glob(sys.argv[1] + "/out/shock_rod-*/run.json"))
+sys.exit(sets != [("time.end=1e-7",), ("time.end=2e-7",)])' "$TMP"; then
+  ok "default_out: other --set values go to other folders, the overrides in run.json"
+else
+  fail "default_out: expected 2 folders out/shock_rod-HASH with their overrides, got $folders"
+fi
+
+# --set before the case file: each --set takes one value.
+mp set_first run --set time.end=1e-7 "$CASE" --threads 1 --out "$TMP/set_first"
+[[ $rc -eq 0 ]] && ok "set_first: --set before the case file" ||
+  { fail "set_first: exit $rc"; show set_first; }
+
+# A good run into the seeded folder with --force replaces the old history.csv.
+mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
+  --threads 2 --force
 if [[ $rc -ne 0 ]]; then
   fail "good_seeded: exit $rc"
   show good_seeded

@@ -141,7 +141,8 @@ while [[ $attempt -lt 12 ]]; do
   if [[ -f "$KILLED/checkpoint.h5" ]]; then
     cmd=(resume "$KILLED" --threads "$threads")
   else
-    cmd=(run "$CASE" "${SHORT[@]}" --out "$KILLED" --threads "$threads")
+    # --force: a kill before the first checkpoint can leave published outputs.
+    cmd=(run "$CASE" "${SHORT[@]}" --out "$KILLED" --threads "$threads" --force)
   fi
   if [[ $kills -ge 6 ]]; then  # enough: let it finish
     mp final "${cmd[@]}"

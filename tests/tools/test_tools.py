@@ -42,6 +42,7 @@ def check(condition, what, detail=""):
 
 
 def run_mpsolid(binary, out, *sets):
+    shutil.rmtree(out, ignore_errors=True)
     args = [binary, "run", CASE, "--out", out, "--threads", "1", "--set", "time.end=5e-5",
             "--set", "output.frame_interval=5e-6"]
     for s in sets:

@@ -196,6 +196,13 @@ TEST(CaseErrors, ModelOptionsTakeDefaultsAndReadBack) {
       load_case_text(base_toml() + "\n[finite_strain]\nhourglass = 2.0\n", "bad.toml");
   EXPECT_EQ(paper.model_section, "");
   EXPECT_TRUE(paper.model_options.numbers.empty());
+  // ... and a note says so.
+  ASSERT_EQ(paper.notes.size(), 1u);
+  EXPECT_NE(paper.notes[0].find("[finite_strain] sets options of model finite_strain; this case "
+                                "runs model paper"),
+            std::string::npos)
+      << paper.notes[0];
+  EXPECT_TRUE(plain.notes.empty());
 }
 
 // ---- step counts ----------------------------------------------------------------
