@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <new>
 
 #include "build_info.hpp"
 #include "src/app/progress.hpp"
@@ -108,6 +109,11 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     fmt::print(stderr, "mpsolid: error: {}\n", e.what());
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr,
+               "mpsolid: failed: out of memory (the estimate before set-up passed, so another "
+               "process took memory, or the case's outputs need more than it allows)\n");
+    return kExitError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "mpsolid: failed: {}\n", e.what());
     return kExitError;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "src/app/memory_check.hpp"
 #include "src/app/progress.hpp"
 #include "src/app/signals.hpp"
 #include "src/core/hash.hpp"
@@ -268,6 +269,7 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   facts.command_line = options.command_line;
   facts.overrides = options.overrides;
   facts.threads = thread_count();
+  check_memory(spec, available_memory_bytes());
   Simulation sim(spec);
   prepare_output_folder(options.out_dir);
   FolderLock lock(options.out_dir);
@@ -314,6 +316,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   facts.overrides = options.overrides;
   facts.threads = thread_count();
   facts.start_step = checkpoint.step;
+  check_memory(spec, available_memory_bytes());
   Simulation sim(spec);
   restore_state(sim.state(), checkpoint, path.string());
   const auto clean_up = [&] {

@@ -261,7 +261,8 @@ void read_output(TableReader& top, CaseSpec& c) {
     r.range_check("frame_interval", c.frame_interval,
                   c.frame_interval >= c.dt && c.frame_interval > 0,
                   fmt::format("[dt, inf) = [{}, inf) s", c.dt));
-    c.history_interval = r.number_or("history_interval", c.frame_interval);
+    c.history_default = !r.has("history_interval");
+    c.history_interval = r.number_or("history_interval", c.default_history_interval());
     r.range_check("history_interval", c.history_interval,
                   c.history_interval >= c.dt && c.history_interval > 0 &&
                       c.history_interval <= c.frame_interval,
@@ -277,7 +278,10 @@ void read_output(TableReader& top, CaseSpec& c) {
     c.compression = static_cast<int>(level);
     r.finish();
   }
-  if (c.history_interval == 0) c.history_interval = c.frame_interval;
+  if (c.history_interval == 0) {
+    c.history_default = true;
+    c.history_interval = c.default_history_interval();
+  }
 }
 
 // Every model's section is checked against its options table, whichever
@@ -361,8 +365,10 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_stability(top, c);
   read_numerics(top, c);
   top.finish();
-  if (!c.dt_auto)
+  if (!c.dt_auto) {
+    c.snap_default_history();
     for (std::string& note : c.check_step_grid()) c.notes.push_back(std::move(note));
+  }
   c.resolved_toml = resolved_case_toml(c);
   return c;
 }

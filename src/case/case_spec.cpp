@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "src/case/resolved_case.hpp"
+#include "src/core/geometry.hpp"
 
 namespace mpsolid {
 
@@ -41,11 +42,23 @@ std::int64_t CaseSpec::steps_per_history() const {
   return std::min(steps_per_frame(), steps_in(history_interval, dt));
 }
 
+std::int64_t CaseSpec::particle_count() const {
+  std::int64_t n = 0;
+  for (const BodySpec& b : bodies)
+    n += lattice_span(b.x[0], b.x[1], l0).count() * lattice_span(b.y[0], b.y[1], l0).count();
+  return n;
+}
+
 namespace {
 bool whole_steps(double ratio) {
   return std::abs(ratio - std::round(ratio)) <= 1e-9 * std::max(1.0, ratio);
 }
 }  // namespace
+
+void CaseSpec::snap_default_history() {
+  if (!history_default) return;
+  history_interval = time_at(std::min(steps_per_frame(), steps_in(default_history_interval(), dt)));
+}
 
 std::vector<std::string> CaseSpec::check_step_grid() const {
   struct Span {
@@ -76,17 +89,26 @@ std::vector<std::string> CaseSpec::check_step_grid() const {
         fmt::format("{} = {:.9g} s is {:.9g} steps of dt = {:.9g} s: {} every {} steps ({:.9g} s)",
                     key, seconds, seconds / dt, dt, what, steps, time_at(steps)));
   };
+  // history.csv gets a row every steps_per_history() steps and at the end.
+  if (const std::int64_t rows = step_count() / steps_per_history() + 1; rows < kFewHistoryRows)
+    found.push_back(fmt::format(
+        "history.csv gets only {} rows (output.history_interval = {:.6g} s over time.end = "
+        "{:.6g} s): set a smaller output.history_interval to resolve the run in time",
+        rows, history_interval, end));
   interval_note("output.frame_interval", frame_interval, steps_per_frame(), "frames");
   interval_note("output.history_interval", history_interval, steps_per_history(), "history rows");
   return found;
 }
 
 void CaseSpec::set_auto_time_step(double limit, double omega_max) {
-  // The finest output interval becomes a whole number of steps, so outputs
-  // fall on the requested times whatever step is chosen.
-  const double finest = std::min(history_interval, frame_interval);
+  // The finest requested output interval becomes a whole number of steps, so
+  // outputs fall on the requested times whatever step is chosen; a defaulted
+  // history interval follows the step instead of constraining it.
+  const double finest =
+      history_default ? frame_interval : std::min(history_interval, frame_interval);
   const double target = dt_safety * limit;
   dt = finest / std::ceil(finest / target * (1.0 - 1e-12));
+  snap_default_history();
   // The resolved case keeps the chosen step as a number, so a resumed run
   // goes on with it rather than estimating again.
   resolved_toml = fmt::format(

@@ -1,6 +1,7 @@
 #pragma once
 // A fully validated case, in SI units. Produced by read_case(); everything
 // downstream trusts it.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -69,6 +70,9 @@ struct StabilitySpec {
 // exact in a double (2^53).
 inline constexpr double kMaxSteps = 9007199254740992.0;
 
+// Fewer history rows than this get a note: too few to see a run's history.
+inline constexpr std::int64_t kFewHistoryRows = 20;
+
 struct CaseSpec {
   std::string name;    // output folder name (default: the file's stem)
   std::string source;  // the case file it came from
@@ -90,7 +94,10 @@ struct CaseSpec {
   double dt_safety = 0.4;
   double end = 0;
   double frame_interval = 0;
-  double history_interval = 0;     // s; a history.csv row this often (and at frames)
+  // s; a history.csv row this often (and at frames). Default: about 200
+  // rows per run or every 10 us, whichever is coarser, at most frame_interval.
+  double history_interval = 0;
+  bool history_default = false;    // not given: a whole number of steps, no note
   double checkpoint_interval = 0;  // s; 0: only at the end of the run (and on a stop signal)
   int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
   OptionValues model_options;      // the chosen model's section, defaults filled in
@@ -105,6 +112,14 @@ struct CaseSpec {
   std::vector<std::string> notes;
 
   double time_at(std::int64_t step) const { return static_cast<double>(step) * dt; }
+  std::int64_t particle_count() const;  // lattice sites of every body
+  // About 200 history rows per run, or one every 10 us, whichever is coarser;
+  // never sparser than the frames nor finer than a step (once dt is known).
+  double default_history_interval() const {
+    return std::min(frame_interval, std::max({end / 200.0, 1e-5, dt}));
+  }
+  // A defaulted history interval put on the step grid (dt must be known).
+  void snap_default_history();
   std::int64_t step_count() const;            // steps to reach `end`
   std::int64_t steps_per_frame() const;       // output cadence in steps
   std::int64_t steps_per_history() const;     // history.csv cadence in steps

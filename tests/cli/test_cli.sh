@@ -213,7 +213,7 @@ fi
 
 OUT=$TMP/good
 HEADER='t,kinetic_energy,strain_energy,external_work,momentum_x,momentum_y,angular_momentum,max_speed,plate.x,plate.y,plate.theta,rod.xmin,rod.xmax,rod.ymin,rod.ymax'
-mp good run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$OUT" --threads 2
+mp good run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --set output.history_interval=1e-6 --out "$OUT" --threads 2
 if [[ $rc -ne 0 ]]; then
   fail "good: expected exit code 0, got $rc"
   show good
@@ -231,10 +231,10 @@ if [[ -f "$OUT/history.csv" ]]; then
     fail "good: history.csv header is '$first', expected it to begin with '$HEADER'"
   fi
   rows=$(($(wc -l <"$OUT/history.csv") - 1))
-  if [[ $rows -eq 3 ]]; then
-    ok "good: history.csv has 3 data rows"
+  if [[ $rows -eq 21 ]]; then
+    ok "good: history.csv has 21 data rows"
   else
-    fail "good: history.csv has $rows data rows, expected 3 (t = 0, 1e-5, 2e-5)"
+    fail "good: history.csv has $rows data rows, expected 21 (t = 0, 1e-6, ..., 2e-5)"
   fi
 fi
 if [[ -f "$OUT/frames.h5" ]]; then
@@ -387,6 +387,13 @@ else
   show notes
 fi
 
+# A case too large for the machine's memory is refused before set-up, with
+# the estimate and what is available (l0 chosen for twice the available memory).
+avail=$(awk '/^MemAvailable:/ {print $2 * 1024}' /proc/meminfo)
+l0=$(awk -v a="$avail" 'BEGIN { l = sqrt(0.00452 * 900 / (2 * a)); if (l < 4.5e-6) l = 4.5e-6; printf "%.3g", l }')
+expect_bad_input memory "need about" "GiB" "available" "larger l0" -- \
+  run "$CASE" --set "l0=$l0" --out "$SEEDED" --threads 1
+
 # Two runs into one folder: the second (and a resume) is refused naming the
 # owner, and the first completes with readable results.
 LOCKED=$TMP/locked
@@ -411,7 +418,7 @@ fi
 if [[ $first_rc -eq 0 ]] && [[ ! -e "$LOCKED/.owner" ]] &&
   python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["outcome"] != "completed")' \
     "$LOCKED/run.json" &&
-  [[ $(wc -l <"$LOCKED/history.csv") -eq 3 ]] && ! grep -qaP '\x00' "$LOCKED/history.csv" &&
+  [[ $(wc -l <"$LOCKED/history.csv") -eq 42 ]] && ! grep -qaP '\x00' "$LOCKED/history.csv" &&
   /usr/bin/python3 -c 'import h5py,sys; f=h5py.File(sys.argv[1]); sys.exit(len(f["frames"]) != 2)' \
     "$LOCKED/frames.h5" 2>/dev/null; then
   ok "locked: the first run completed with intact results and released the folder"
@@ -422,7 +429,7 @@ fi
 
 # A run into a folder with an earlier run's results is refused (naming them)
 # unless --force, which replaces them.
-mp seeded_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
+mp seeded_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --set output.history_interval=1e-6 --out "$SEEDED" \
   --threads 2
 if [[ $rc -eq 2 ]] && grep -qF "holds the results of an earlier run (history.csv)" \
   "$TMP/seeded_no_force.err" && grep -qF -- "--force" "$TMP/seeded_no_force.err" &&
@@ -432,7 +439,7 @@ else
   fail "seeded_no_force: exit $rc, or the folder changed"
   show seeded_no_force
 fi
-mp repeat_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$OUT" \
+mp repeat_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --set output.history_interval=1e-6 --out "$OUT" \
   --threads 2
 if [[ $rc -eq 2 ]] && grep -qF "run.json: case shock_rod, model paper, completed at step 2000" \
   "$TMP/repeat_no_force.err"; then
@@ -462,7 +469,7 @@ mp set_first run --set time.end=1e-7 "$CASE" --threads 1 --out "$TMP/set_first"
   { fail "set_first: exit $rc"; show set_first; }
 
 # A good run into the seeded folder with --force replaces the old history.csv.
-mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --out "$SEEDED" \
+mp good_seeded run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --set output.history_interval=1e-6 --out "$SEEDED" \
   --threads 2 --force
 if [[ $rc -ne 0 ]]; then
   fail "good_seeded: exit $rc"

@@ -3,6 +3,7 @@
 // --set overrides, the resolved TOML read back) is accepted as written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <regex>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "src/core/types.hpp"
 #include "src/solver/case_loader.hpp"
+#include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
 namespace {
@@ -219,11 +221,35 @@ TEST(CaseErrors, EndsAndIntervalsOffTheStepGridAreRoundedWithANote) {
       load_case_text(base_toml(), "bad.toml", {"time.end=2.5e-7", "output.frame_interval=1.05e-7"});
   EXPECT_EQ(spec.step_count(), 25);
   EXPECT_EQ(spec.steps_per_frame(), 10);
-  ASSERT_EQ(spec.notes.size(), 2u);  // frames and history rows (the default: the frame interval)
-  EXPECT_NE(spec.notes[0].find("frames every 10 steps"), std::string::npos) << spec.notes[0];
+  // Frames off the grid (and, this short, few history rows).
+  const auto has_note = [](const CaseSpec& c, const std::string& text) {
+    return std::any_of(c.notes.begin(), c.notes.end(),
+                       [&](const std::string& n) { return n.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(has_note(spec, "output.frame_interval = 1.05e-07 s is 10.5 steps"));
+  EXPECT_TRUE(has_note(spec, "frames every 10 steps"));
+  // The history interval was not given: it is put on the grid without a note.
+  EXPECT_FALSE(has_note(spec, "output.history_interval = 1.05e-07"));
+  EXPECT_DOUBLE_EQ(spec.history_interval, 1e-7);
+  const CaseSpec given = load_case_text(
+      base_toml(), "bad.toml",
+      {"time.end=2.5e-7", "output.frame_interval=1e-7", "output.history_interval=1.5e-8"});
+  EXPECT_TRUE(has_note(given, "output.history_interval = 1.5e-08 s is 1.5 steps"));
   const CaseSpec late = load_case_text(base_toml(), "bad.toml", {"time.end=1.005e-6"});
-  ASSERT_FALSE(late.notes.empty());
-  EXPECT_NE(late.notes[0].find("the next whole step, 101"), std::string::npos) << late.notes[0];
+  EXPECT_TRUE(has_note(late, "the next whole step, 101"));
+}
+
+TEST(CaseErrors, HistoryDefaultsToAbout200RowsOrEvery10Microseconds) {
+  // The rod case sets only the frame interval (1 ms).
+  EXPECT_DOUBLE_EQ(testing::rod_case().history_interval, 5e-5);                   // 10 ms / 200
+  EXPECT_DOUBLE_EQ(testing::rod_case({"time.end=1e-3"}).history_interval, 1e-5);  // 10 us
+  EXPECT_TRUE(testing::rod_case().notes.empty());
+  // Fewer than 20 rows get a note.
+  const CaseSpec short_run = testing::rod_case({"time.end=2e-5"});
+  ASSERT_EQ(short_run.notes.size(), 1u);
+  EXPECT_NE(short_run.notes[0].find("history.csv gets only 3 rows"), std::string::npos)
+      << short_run.notes[0];
+  EXPECT_TRUE(testing::rod_case({"time.end=2e-5", "output.history_interval=1e-6"}).notes.empty());
 }
 
 TEST(CaseErrors, AMissingKeyNamesTheLikelyTypo) {
