@@ -10,9 +10,24 @@
 - output.compression = 4 gives deflated datasets with the same values;
 - tools/plot.py writes frames.png and history.png, valid PNGs of sensible
   size, also with --color pressure, and fails clearly (exit 2,
-  a message naming what is missing) on a folder without results.
+  a message naming what is missing) on a folder without results;
+- its pictures, through --describe (what was drawn, as JSON): frames in a
+  grid of at most 6 columns and more than one row for 12 frames, about
+  2000-2400 px wide, coloured by pressure by default with a colourbar
+  labelled with the quantity and unit (body colours with a legend on
+  request), the title giving case, model, l0, dt and force; history.png
+  with the energy-balance error on its own panel relative to max W; a
+  --reference curve drawn on the displacement panel (a missing file: exit
+  2); a blow-up run (the 55.9 kN rod with the paper model, exit 3) marked on
+  every time panel with its criterion and its last frame as the last good
+  state;
+- tools/plot.py is an executable (#!/usr/bin/python3) and, under a Python
+  without h5py or matplotlib, exits 2 with one line naming the package and
+  /usr/bin/python3, no traceback.
 Prints "ok: ..." per check, "FAIL: ..." per failure; exits 1 if any failed.
 """
+import csv
+import json
 import os
 import shutil
 import struct
@@ -27,6 +42,7 @@ import numpy as np
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PLOT = os.path.join(ROOT, "tools", "plot.py")
 CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
+CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure"}
 failures = []
@@ -41,15 +57,16 @@ def check(condition, what, detail=""):
     return condition
 
 
-def run_mpsolid(binary, out, *sets):
+def run_mpsolid(binary, out, *sets, case=CASE, short=True, expect=0):
     shutil.rmtree(out, ignore_errors=True)
-    args = [binary, "run", CASE, "--out", out, "--threads", "1", "--set", "time.end=5e-5",
-            "--set", "output.frame_interval=5e-6"]
+    args = [binary, "run", case, "--out", out, "--threads", "1"]
+    if short:
+        args += ["--set", "time.end=5e-5", "--set", "output.frame_interval=5e-6"]
     for s in sets:
         args += ["--set", s]
     result = subprocess.run(args, stdin=subprocess.DEVNULL, capture_output=True, text=True,
                             timeout=300)
-    if result.returncode != 0:
+    if result.returncode != expect:
         print(result.stdout, result.stderr)
     return result.returncode
 
@@ -212,6 +229,150 @@ def check_plot(folder):
         shutil.rmtree(empty)
 
 
+def describe(folder, *options):
+    """Runs plot.py FOLDER --describe OPTIONS: (exit code, what was drawn or None, stderr)."""
+    result = subprocess.run([sys.executable, PLOT, folder, "--describe", *options],
+                            capture_output=True, text=True, timeout=300)
+    try:
+        drawn = json.loads(result.stdout) if result.returncode == 0 else None
+    except ValueError:
+        drawn = None
+    return result.returncode, drawn, result.stdout[-400:] + result.stderr[-800:]
+
+
+def check_pictures(folder):
+    """The grid, colouring, titles and panels of a run with more frames than shown."""
+    code, drawn, output = describe(folder)
+    if not check(code == 0 and drawn is not None, "plot.py --describe exits 0 with JSON", output):
+        return
+    frames, history = drawn["frames"], drawn["history"]
+    size = png_size(os.path.join(folder, "frames.png"))
+    check(size is not None and list(size) == frames["size_px"],
+          "--describe gives frames.png's size in pixels", f"{size} vs {frames['size_px']}")
+    check(len(frames["panels"]) == 12 and frames["columns"] <= 6 and frames["rows"] >= 2,
+          "12 frames by default, in a grid of at most 6 columns and more than one row",
+          f"{len(frames['panels'])} panels, {frames['rows']} x {frames['columns']}")
+    check(size is not None and 1900 <= size[0] <= 2500 and size[1] <= 2000,
+          "frames.png is about 2000-2400 px wide at the default dpi", f"{size}")
+    check(all(p["title"].startswith("t = ") and p["title"].endswith(" ms")
+              for p in frames["panels"]), "every frame panel gives its time in ms",
+          f"{[p['title'] for p in frames['panels']]}")
+    times = [p["time"] for p in frames["panels"]]
+    with h5py.File(os.path.join(folder, "frames.h5"), "r") as f:
+        stored = sorted(f["frames"][n].attrs["time"] for n in f["frames"])
+    check(times == sorted(times) and times[0] == stored[0] and times[-1] == stored[-1],
+          "the frames shown run in time order from the first frame to the last")
+    bar = frames["colorbar"]
+    check(frames["color"] == "pressure" and bar is not None and "pressure" in bar["label"]
+          and bar["unit"] in ("MPa", "kPa", "Pa") and f"({bar['unit']}" in bar["label"],
+          "colouring by pressure by default, one colourbar labelled with the quantity and unit",
+          f"{frames['color']}, {bar}")
+    if bar is not None:
+        lo, hi = bar["data_range"]
+        clipped = lo < bar["limits"][0] or hi > bar["limits"][1]
+        check(clipped == bar["clipped"] and (not clipped or "clipped" in bar["label"]),
+              "a clipped colour scale says so in the colourbar label", f"{bar}")
+    for what in (frames, history):
+        title = what["title"]
+        check(title.startswith("shock_rod") and "model paper" in title and "l0 = 2 mm" in title
+              and "dt = 10 ns" in title and "11.2 kN" in title,
+              "the title gives case, model, l0, dt and force", title)
+        check(os.path.abspath(folder) in what["footnote"] and os.path.basename(folder)
+              not in title, "the folder's name is a footnote, not the title", what["footnote"])
+    panels = {p["name"]: p for p in history["panels"]}
+    balance = panels.get("balance", {})
+    ylabel = balance.get("ylabel", "")
+    check("energy" in panels and balance.get("lines") and "max W" in ylabel and "E0" in ylabel
+          and ylabel.endswith("(%)") and "external work W" in panels["energy"]["lines"]
+          and "external work W" not in balance["lines"],
+          "the energy-balance error (KE + PE - W - E0) / max W in % has a panel of its own",
+          f"{balance}")
+    h = {}
+    with open(os.path.join(folder, "history.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    for k, name in enumerate(rows[0]):
+        h[name] = np.array([float(r[k]) for r in rows[1:]])
+    e = h["kinetic_energy"] + h["strain_energy"]
+    expected = (e[-1] - h["external_work"][-1] - e[0]) / np.max(np.abs(h["external_work"])) * 100
+    check(abs(balance.get("final_percent", 1e9) - expected) <= 1e-9 * max(1.0, abs(expected)),
+          "the balance panel's last value is (KE + PE - W - E0) / max W in %",
+          f"{balance.get('final_percent')} vs {expected}")
+    check(set(panels) >= {"rigid", "x", "y", "energy", "balance"} and history["blowup"] is None
+          and all("blowup_marker" not in p for p in history["panels"]),
+          "history.png: displacement, extents, energies and balance; no blow-up marked",
+          f"{sorted(panels)}")
+
+    code, drawn, output = describe(folder, "--color", "body")
+    if check(code == 0 and drawn is not None, "plot.py --color body --describe exits 0", output):
+        legend = drawn["frames"]["legend"]
+        check(drawn["frames"]["colorbar"] is None and any(l.startswith("rod") for l in legend)
+              and any(l.startswith("plate") for l in legend),
+              "--color body: body colours with a legend, no colourbar", f"{legend}")
+
+    reference = os.path.join(folder, "reference plate.csv")
+    with open(reference, "w") as f:
+        f.write("t,x\n" + "".join(f"{k * 5e-6:.6g},{k * 1e-5:.6g}\n" for k in range(11)))
+    code, drawn, output = describe(folder, "--reference", reference)
+    if check(code == 0 and drawn is not None, "plot.py --reference FILE.csv exits 0", output):
+        ref = drawn["history"]["reference"]
+        rigid = {p["name"]: p for p in drawn["history"]["panels"]}["rigid"]
+        check(ref is not None and ref["points"] == 11
+              and "reference: reference plate.csv" in rigid["lines"],
+              "--reference: the curve (header row skipped) is drawn on the displacement panel, "
+              "labelled with the file name", f"{ref}, {rigid['lines']}")
+    code, drawn, output = describe(folder, "--reference", reference + ".missing")
+    check(code == 2 and "no such file" in output, "--reference with a missing file exits 2",
+          output)
+    os.remove(reference)
+
+
+def check_blowup(folder):
+    code, drawn, output = describe(folder)
+    if not check(code == 0 and drawn is not None, "plot.py --describe on a blow-up exits 0",
+                 output):
+        return
+    with open(os.path.join(folder, "run.json")) as f:
+        diagnosis = json.load(f)["diagnosis"]
+    criterion, when = diagnosis["criterion"], diagnosis["time"]
+    markers = [p.get("blowup_marker") for p in drawn["history"]["panels"]]
+    check(markers and all(m and m["time"] == when and m["criterion"] == criterion
+                          for m in markers),
+          "history.png marks the blow-up time with its criterion on every time panel",
+          f"{markers}")
+    frames = drawn["frames"]
+    check(frames["blowup"] is not None and frames["blowup"]["criterion"] == criterion
+          and frames["panels"][-1]["last_good_state"]
+          and not any(p["last_good_state"] for p in frames["panels"][:-1]),
+          "frames.png marks the last frame as the last good state, with the criterion",
+          f"{frames['blowup']}")
+    ring = frames["blowup"] and frames["blowup"]["particle_position_mm"]
+    check(ring is not None and all(abs(a - b * 1e3) < 1e-9
+                                   for a, b in zip(ring, diagnosis["position"])),
+          "frames.png rings the diagnosed particle at its position", f"{ring}")
+
+
+def check_missing_libraries(folder):
+    check(os.access(PLOT, os.X_OK), "tools/plot.py is executable")
+    with open(PLOT) as f:
+        check(f.readline().strip() == "#!/usr/bin/python3",
+              "tools/plot.py starts with #!/usr/bin/python3")
+    result = subprocess.run([PLOT, folder], capture_output=True, text=True, timeout=300)
+    check(result.returncode == 0, "tools/plot.py DIR runs as an executable",
+          result.stdout + result.stderr)
+    for module, package in (("h5py", "python3-h5py"), ("matplotlib", "python3-matplotlib")):
+        # A Python without the module: the import machinery refuses names set to None.
+        program = (f"import runpy, sys; sys.modules[{module!r}] = None; "
+                   f"sys.argv = [{PLOT!r}, {folder!r}]; runpy.run_path({PLOT!r}, "
+                   f"run_name='__main__')")
+        result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                                timeout=120)
+        lines = result.stderr.strip().splitlines()
+        check(result.returncode == 2 and len(lines) == 1 and package in lines[0]
+              and "/usr/bin/python3" in lines[0] and "Traceback" not in result.stderr,
+              f"under a Python without {module}, plot.py exits 2 with one line naming "
+              f"{package} and /usr/bin/python3", f"exit {result.returncode}: {result.stderr}")
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -229,6 +390,16 @@ def main():
             check_compression(plain, packed)
             check_xdmf(packed)
         check_plot(plain)
+        check_missing_libraries(plain)
+        grid = os.path.join(tmp, "grid")
+        if check(run_mpsolid(binary, grid, "output.frame_interval=2e-6") == 0,
+                 "a short run with 26 frames"):
+            check_pictures(grid)
+        blowup = os.path.join(tmp, "blowup")
+        if check(run_mpsolid(binary, blowup, "model=paper", "time.end=0.001", case=CASE_55KN,
+                             short=False, expect=3) == 3,
+                 "the 55.9 kN rod with the paper model blows up (exit 3)"):
+            check_blowup(blowup)
     finally:
         shutil.rmtree(tmp)
     print()
