@@ -279,9 +279,15 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
         "{} holds the results of an earlier run ({}); give --force to replace them, --out for "
         "another folder, or continue a stopped run with: mpsolid resume {}",
         options.out_dir.string(), earlier, options.out_dir.string()));
-  RunFolder outputs(options.out_dir, sim.state(), sim.spec());
-  lock.record_owner();
-  return run_loop(sim, outputs, facts, options, true);
+  try {
+    RunFolder outputs(options.out_dir, sim.state(), sim.spec());
+    lock.record_owner();
+    return run_loop(sim, outputs, facts, options, true);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {  // the outputs are closed by now
+    throw std::runtime_error(abandon_failed_run(options.out_dir, e.what()));
+  }
 }
 
 int resume_run(const std::vector<std::string>& overrides, const RunOptions& options) {
@@ -331,7 +337,12 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
     throw;
   }
   if (lock) lock->record_owner();
-  return run_loop(sim, *outputs, facts, options, false);
+  try {
+    return run_loop(sim, *outputs, facts, options, false);
+  } catch (const std::exception& e) {
+    outputs.reset();  // closes the staging files first
+    throw std::runtime_error(abandon_failed_run(options.out_dir, e.what()));
+  }
 }
 
 }  // namespace mpsolid

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -24,6 +25,12 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
         fmt::format("cannot rename {} to {}: {}", from.string(), to.string(), ec.message()));
 }
 }  // namespace
+
+long long free_bytes(const std::filesystem::path& path) {
+  struct statvfs fs {};
+  if (::statvfs(path.c_str(), &fs) != 0) return -1;
+  return static_cast<long long>(fs.f_bavail) * static_cast<long long>(fs.f_frsize);
+}
 
 std::filesystem::path staging_path(const std::filesystem::path& path) {
   return path.parent_path() / (path.filename().string() + ".tmp");

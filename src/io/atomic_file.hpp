@@ -27,6 +27,10 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 // `to`.copy.tmp.
 void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);
 
+// Bytes free for an unprivileged writer on the file system holding `path`
+// (statvfs), or -1 when it cannot be asked.
+long long free_bytes(const std::filesystem::path& path);
+
 // The suffix of copy_file_atomically's temporary file.
 inline std::string copy_path_suffix() {
   return ".copy.tmp";

@@ -53,6 +53,34 @@ const std::filesystem::path& check_same_run(const std::filesystem::path& dir,
 }
 }  // namespace
 
+std::string abandon_failed_run(const std::filesystem::path& dir, const std::string& failure) {
+  // Disk-full errors arrive as EIO from a copy or as an HDF5 message: the
+  // file system's free space, before the temporary files go, tells.
+  constexpr long long kNearlyFull = 1 << 20;
+  const long long free = free_bytes(dir);
+  std::error_code ignored;
+  for (const char* name : {"history.csv", "frames.h5"}) {
+    std::filesystem::remove(staging_path(dir / name), ignored);
+    std::filesystem::remove(dir / (std::string(name) + copy_path_suffix()), ignored);
+  }
+  remove_leftovers(dir);
+  std::string text = failure;
+  if (free >= 0 && free < kNearlyFull)
+    text += fmt::format("; no space left on the device holding {} ({} bytes free when it failed)",
+                        dir.string(), free);
+  try {
+    const Checkpoint last = read_checkpoint(RunFolder::checkpoint_path(dir));
+    text += fmt::format(
+        ". The last checkpoint (step {}) and the history.csv and frames.h5 it records are "
+        "intact; the temporary files are removed. Free some space, then continue with: mpsolid "
+        "resume {}",
+        last.step, dir.string());
+  } catch (const std::exception&) {
+    text += ". No checkpoint was completed; the temporary files are removed";
+  }
+  return text;
+}
+
 std::string earlier_results(const std::filesystem::path& dir) {
   std::vector<std::string> present;
   for (const char* name : {"history.csv", "frames.h5", "checkpoint.h5", "run.json"})

@@ -22,6 +22,12 @@
 
 namespace mpsolid {
 
+// After a run failed writing its outputs (the RunFolder destroyed): removes
+// every temporary file it may have left in `dir` and returns what the user
+// must know: the failure, "no space left" when the file system is full, and
+// which checkpoint (and the outputs it records) is intact to resume from.
+std::string abandon_failed_run(const std::filesystem::path& dir, const std::string& failure);
+
 // The results of an earlier run in `dir` (history.csv, frames.h5,
 // checkpoint.h5, run.json: those present), in words for a refusal; empty if
 // there are none.
