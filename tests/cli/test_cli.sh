@@ -332,32 +332,29 @@ expect_bad_input end_overflows "time.end" "2^53" "steps" -- \
 sed 's/^l0 = /lo = /' "$CASE" >"$TMP/typo.toml"
 expect_bad_input typo_hint "l0 is missing" "'lo'" "a typo for 'l0'" -- \
   run "$TMP/typo.toml" --out "$SEEDED"
+# expect_exit LABEL CODE NEEDLE -- ARGS...: mpsolid ARGS exits CODE with NEEDLE on stderr.
+expect_exit() {
+  local label=$1 code=$2 needle=$3
+  shift 4
+  mp "$label" "$@"
+  if [[ $rc -eq $code ]] && grep -qF -- "$needle" "$TMP/$label.err"; then
+    ok "$label: exit $code, '$needle'"
+  else
+    fail "$label: exit $rc, expected $code with '$needle'"
+    show "$label"
+  fi
+}
+
 touch "$TMP/a_file"
-mp out_is_file run "$CASE" --set time.end=1e-7 --out "$TMP/a_file" --threads 1
-if [[ $rc -eq 2 ]] && grep -qF "output folder is a file" "$TMP/out_is_file.err"; then
-  ok "out_is_file: exit 2, the folder named"
-else
-  fail "out_is_file: exit $rc"
-  show out_is_file
-fi
-mkdir -p "$TMP/read_only" && chmod 555 "$TMP/read_only"
-mp out_uncreatable run "$CASE" --set time.end=1e-7 --out "$TMP/a_file/sub" --threads 1
-if [[ $rc -eq 2 ]] && grep -qF "cannot create the output folder" "$TMP/out_uncreatable.err"; then
-  ok "out_uncreatable: exit 2, the folder named"
-else
-  fail "out_uncreatable: exit $rc"
-  show out_uncreatable
-fi
+expect_exit out_is_file 2 "$TMP/a_file: the output folder is a file" -- \
+  run "$CASE" --set time.end=1e-7 --out "$TMP/a_file" --threads 1
+expect_exit out_uncreatable 2 "$TMP/a_file/sub: cannot create the output folder" -- \
+  run "$CASE" --set time.end=1e-7 --out "$TMP/a_file/sub" --threads 1
 
 # Threads: OMP_NUM_THREADS is the default; a bad one is bad input; more
 # threads than cores are warned about.
-OMP_NUM_THREADS=abc mp omp_bad run "$CASE" --set time.end=1e-7 --out "$TMP/omp_bad"
-if [[ $rc -eq 2 ]] && grep -qF "OMP_NUM_THREADS = 'abc'" "$TMP/omp_bad.err"; then
-  ok "omp_bad: a bad OMP_NUM_THREADS is exit 2"
-else
-  fail "omp_bad: exit $rc"
-  show omp_bad
-fi
+OMP_NUM_THREADS=abc expect_exit omp_bad 2 "OMP_NUM_THREADS = 'abc'" -- \
+  run "$CASE" --set time.end=1e-7 --out "$TMP/omp_bad"
 OMP_NUM_THREADS=1 mp omp_one run "$CASE" --set time.end=1e-7 --out "$TMP/omp_one"
 if [[ $rc -eq 0 ]] && python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["threads"] != 1)' \
   "$TMP/omp_one/run.json"; then
