@@ -135,12 +135,10 @@ struct Cadences {
 void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
                  bool fresh) {
   const Cadences every(sim.spec(), sim.particles().size());
-  std::int64_t last_frame_step = -1;
   // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
     outputs.write_frame(sim.state(), sim.spec(), d);
-    last_frame_step = sim.step();
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {
@@ -170,7 +168,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
       // Keep the last good state as the final frame of the outputs.
       last_good.restore(sim.state());
-      if (sim.step() != last_frame_step) write_frame(sim.diagnostics());
+      if (sim.step() != outputs.last_frame_step()) write_frame(sim.diagnostics());
       break;
     }
     last_good = StateSnapshot::capture(sim.state());
@@ -253,6 +251,46 @@ const std::vector<std::string> kResumeKeys = {"time.end", "output.checkpoint_int
                                               "output.compression"};
 }  // namespace
 
+namespace {
+// A new segment's facts, with the run's thread count applied.
+RunFacts begin_segment(const RunOptions& options, std::int64_t start_step) {
+  set_thread_count(options.threads);
+  RunFacts facts;
+  facts.command_line = options.command_line;
+  facts.overrides = options.overrides;
+  facts.threads = thread_count();
+  facts.start_step = start_step;
+  return facts;
+}
+
+// Runs `body` (which owns the run's outputs, closed when it returns or
+// throws); a failure while writing becomes abandon_failed_run's account of
+// what is intact. Bad input passes through as it is.
+// The outputs of `dir` continued from `from`; a refused resume leaves the
+// folder as it was (the staging copies it made are removed).
+RunFolder resumed_outputs(const std::filesystem::path& dir, const Simulation& sim,
+                          const Checkpoint& from) {
+  try {
+    return RunFolder(dir, sim.state(), sim.spec(), from);
+  } catch (const InputError&) {
+    for (const char* name : {"history.csv", "frames.h5"})
+      std::filesystem::remove(staging_path(dir / name));
+    throw;
+  }
+}
+
+template <class Body>
+int with_failed_writes_explained(const std::filesystem::path& dir, Body&& body) {
+  try {
+    return body();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(abandon_failed_run(dir, e.what()));
+  }
+}
+}  // namespace
+
 std::filesystem::path default_out_dir(const std::string& case_name,
                                       const std::vector<std::string>& overrides) {
   if (overrides.empty()) return std::filesystem::path("out") / case_name;
@@ -264,11 +302,7 @@ std::filesystem::path default_out_dir(const std::string& case_name,
 }
 
 int run_case(const CaseSpec& spec, const RunOptions& options) {
-  set_thread_count(options.threads);
-  RunFacts facts;
-  facts.command_line = options.command_line;
-  facts.overrides = options.overrides;
-  facts.threads = thread_count();
+  RunFacts facts = begin_segment(options, 0);
   check_memory(spec, available_memory_bytes());
   Simulation sim(spec);
   prepare_output_folder(options.out_dir);
@@ -279,15 +313,11 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
         "{} holds the results of an earlier run ({}); give --force to replace them, --out for "
         "another folder, or continue a stopped run with: mpsolid resume {}",
         options.out_dir.string(), earlier, options.out_dir.string()));
-  try {
+  return with_failed_writes_explained(options.out_dir, [&] {
     RunFolder outputs(options.out_dir, sim.state(), sim.spec());
     lock.record_owner();
     return run_loop(sim, outputs, facts, options, true);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {  // the outputs are closed by now
-    throw std::runtime_error(abandon_failed_run(options.out_dir, e.what()));
-  }
+  });
 }
 
 int resume_run(const std::vector<std::string>& overrides, const RunOptions& options) {
@@ -306,7 +336,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   }
   const Checkpoint checkpoint = read_checkpoint(path);
   const CaseSpec spec = load_case_text(checkpoint.case_toml, path.string(), overrides);
-  const double at = static_cast<double>(checkpoint.step) * spec.dt;
+  const double at = spec.time_at(checkpoint.step);
   if (spec.step_count() < checkpoint.step)
     throw InputError(fmt::format("time.end = {} s is before the checkpoint (t = {} s, step {})",
                                  spec.end, at, checkpoint.step));
@@ -316,33 +346,15 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
         "time.end=LATER",
         path.string(), at, checkpoint.step));
 
-  set_thread_count(options.threads);
-  RunFacts facts;
-  facts.command_line = options.command_line;
-  facts.overrides = options.overrides;
-  facts.threads = thread_count();
-  facts.start_step = checkpoint.step;
+  RunFacts facts = begin_segment(options, checkpoint.step);
   check_memory(spec, available_memory_bytes());
   Simulation sim(spec);
   restore_state(sim.state(), checkpoint, path.string());
-  const auto clean_up = [&] {
-    for (const char* name : {"history.csv", "frames.h5"})
-      std::filesystem::remove(staging_path(options.out_dir / name));
-  };
-  std::optional<RunFolder> outputs;
-  try {
-    outputs.emplace(options.out_dir, sim.state(), sim.spec(), checkpoint);
-  } catch (const InputError&) {
-    clean_up();  // a refused resume leaves the folder as it was
-    throw;
-  }
-  if (lock) lock->record_owner();
-  try {
-    return run_loop(sim, *outputs, facts, options, false);
-  } catch (const std::exception& e) {
-    outputs.reset();  // closes the staging files first
-    throw std::runtime_error(abandon_failed_run(options.out_dir, e.what()));
-  }
+  return with_failed_writes_explained(options.out_dir, [&] {
+    RunFolder outputs = resumed_outputs(options.out_dir, sim, checkpoint);
+    if (lock) lock->record_owner();
+    return run_loop(sim, outputs, facts, options, false);
+  });
 }
 
 }  // namespace mpsolid

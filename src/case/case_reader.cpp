@@ -63,6 +63,19 @@ std::vector<std::string> names_of(const auto& items) {
   return names;
 }
 
+// The index of the item called by the string at `key` (a material, a body),
+// or a refusal naming the ones defined.
+template <class Items>
+int index_by_name(TableReader& r, const std::string& key, const std::string& what,
+                  const Items& items) {
+  const std::string name = r.string(key, what);
+  const auto it =
+      std::find_if(items.begin(), items.end(), [&](const auto& item) { return item.name == name; });
+  if (it == items.end())
+    r.fail(key, fmt::format("no {} named '{}' (defined: {})", key, name, join(names_of(items))));
+  return static_cast<int>(it - items.begin());
+}
+
 void read_model(TableReader& top, const std::vector<ModelInfo>& models, CaseSpec& c) {
   c.model = top.string_or("model", "paper");
   const auto it = std::find_if(models.begin(), models.end(),
@@ -131,13 +144,8 @@ void read_bodies(TableReader& top, CaseSpec& c) {
         BodySpec b;
         b.name = name;
         b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
-        const std::string material = r.string("material", "the name of a [materials.NAME] table");
-        const auto m = std::find_if(c.materials.begin(), c.materials.end(),
-                                    [&](const Material& x) { return x.name == material; });
-        if (m == c.materials.end())
-          r.fail("material", fmt::format("no material named '{}' (defined: {})", material,
-                                         join(names_of(c.materials))));
-        b.material = static_cast<int>(m - c.materials.begin());
+        b.material =
+            index_by_name(r, "material", "the name of a [materials.NAME] table", c.materials);
         r.pair("x", "the rectangle's x range [x0, x1] in m", b.x);
         r.pair("y", "the rectangle's y range [y0, y1] in m", b.y);
         if (!(b.x[0] < b.x[1]))
@@ -189,17 +197,12 @@ void read_loads(TableReader& top, CaseSpec& c) {
         const std::string type = r.string_or("type", "step");
         if (type != "step")
           r.fail("type", fmt::format("unknown load type '{}' (allowed: step)", type));
-        const std::string body = r.string("body", "the name of a [bodies.NAME] table");
-        const auto b = std::find_if(c.bodies.begin(), c.bodies.end(),
-                                    [&](const BodySpec& x) { return x.name == body; });
-        if (b == c.bodies.end())
+        l.body = index_by_name(r, "body", "the name of a [bodies.NAME] table", c.bodies);
+        const BodySpec& body = c.bodies[static_cast<std::size_t>(l.body)];
+        if (body.kind == Kind::wall)
           r.fail("body",
-                 fmt::format("no body named '{}' (defined: {})", body, join(names_of(c.bodies))));
-        l.body = static_cast<int>(b - c.bodies.begin());
-        if (b->kind == Kind::wall)
-          r.fail(
-              "body",
-              fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing", body));
+                 fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing",
+                             body.name));
         r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
         l.start = r.number_or("start", 0.0);
         r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
@@ -253,6 +256,7 @@ void read_time(TableReader& top, CaseSpec& c) {
 }
 
 void read_output(TableReader& top, CaseSpec& c) {
+  c.history_default = true;  // unless given below
   c.frame_interval = c.end / 10.0;
   c.checkpoint_interval = std::max(c.end / 4.0, c.dt);
   if (const TomlValue* table = top.subtable_or_null("output")) {
@@ -261,12 +265,14 @@ void read_output(TableReader& top, CaseSpec& c) {
     r.range_check("frame_interval", c.frame_interval,
                   c.frame_interval >= c.dt && c.frame_interval > 0,
                   fmt::format("[dt, inf) = [{}, inf) s", c.dt));
-    c.history_default = !r.has("history_interval");
-    c.history_interval = r.number_or("history_interval", c.default_history_interval());
-    r.range_check("history_interval", c.history_interval,
-                  c.history_interval >= c.dt && c.history_interval > 0 &&
-                      c.history_interval <= c.frame_interval,
-                  fmt::format("[dt, frame_interval] = [{}, {}] s", c.dt, c.frame_interval));
+    if (r.has("history_interval")) {
+      c.history_default = false;
+      c.history_interval = r.number("history_interval", "the history row interval in s");
+      r.range_check("history_interval", c.history_interval,
+                    c.history_interval >= c.dt && c.history_interval > 0 &&
+                        c.history_interval <= c.frame_interval,
+                    fmt::format("[dt, frame_interval] = [{}, {}] s", c.dt, c.frame_interval));
+    }
     c.checkpoint_interval = r.number_or("checkpoint_interval", c.checkpoint_interval);
     r.range_check(
         "checkpoint_interval", c.checkpoint_interval,
@@ -278,10 +284,7 @@ void read_output(TableReader& top, CaseSpec& c) {
     c.compression = static_cast<int>(level);
     r.finish();
   }
-  if (c.history_interval == 0) {
-    c.history_default = true;
-    c.history_interval = c.default_history_interval();
-  }
+  if (c.history_default) c.history_interval = c.default_history_interval();
 }
 
 // Every model's section is checked against its options table, whichever

@@ -17,7 +17,7 @@ Simulation::Simulation(const CaseSpec& spec) {
   TimeStepChoice choice = fix_time_step(spec, timers_);
   spec_ = std::move(choice.spec);
   stable_step_ = choice.estimate;
-  state_ = set_up(spec_, timers_);
+  state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
   model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);

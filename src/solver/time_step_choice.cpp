@@ -8,11 +8,10 @@
 namespace mpsolid {
 
 TimeStepChoice fix_time_step(const CaseSpec& spec, PhaseTimers& timers) {
-  TimeStepChoice choice{spec, {}};
+  TimeStepChoice choice{spec, {}, {}};
   if (!spec.dt_auto || spec.dt > 0) return choice;
-  // The initial state the estimate linearises about; the run builds its own
-  // from the fixed case (the same bits: set-up does not depend on dt).
-  SolverState initial = set_up(spec, timers);
+  // The initial state the estimate linearises about (it leaves it as it was).
+  const SolverState& initial = choice.initial.emplace(set_up(spec, timers));
   AnyModel model = make_model(spec.model, initial.particles, initial.bonds, spec.model_options);
   {
     auto t = timers.time(Phase::setup);

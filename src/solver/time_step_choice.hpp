@@ -1,17 +1,23 @@
 #pragma once
-// Fixing a case's time step before its state is built: as given, or for
-// time.dt = "auto" safety x the model's stable-step limit, estimated on the
-// case's initial state (src/solver/stable_step.hpp) and rounded so that every
-// output interval is a whole number of steps (CaseSpec::set_auto_time_step).
+// Fixing a case's time step before anything that depends on it is built: as
+// given, or for time.dt = "auto" safety x the model's stable-step limit,
+// estimated on the case's initial state (src/solver/stable_step.hpp) and
+// rounded so that every output interval is a whole number of steps
+// (CaseSpec::set_auto_time_step). Set-up reads no dt, so the state set up for
+// the estimate is the run's: it is handed on, not built twice.
+#include <optional>
+
 #include "src/case/case_spec.hpp"
+#include "src/core/solver_state.hpp"
 #include "src/core/timers.hpp"
 #include "src/solver/stable_step.hpp"
 
 namespace mpsolid {
 
 struct TimeStepChoice {
-  CaseSpec spec;                // dt > 0, in resolved_toml too
-  StableStepEstimate estimate;  // zeros when dt was given
+  CaseSpec spec;                       // dt > 0, in resolved_toml too
+  StableStepEstimate estimate;         // zeros when dt was given
+  std::optional<SolverState> initial;  // set up for the estimate (loads not yet scheduled)
 };
 
 // Throws InputError when "auto" has no elastic particle to estimate from.

@@ -364,13 +364,8 @@ else
   show omp_one
 fi
 cores=$(nproc)
-mp oversubscribed run "$CASE" --set time.end=1e-7 --out "$TMP/oversubscribed" --threads $((cores + 1))
-if [[ $rc -eq 0 ]] && grep -qF "warning: $((cores + 1)) threads" "$TMP/oversubscribed.err"; then
-  ok "oversubscribed: more threads than cores are warned about"
-else
-  fail "oversubscribed: exit $rc, or no warning"
-  show oversubscribed
-fi
+expect_exit oversubscribed 0 "warning: $((cores + 1)) threads" -- \
+  run "$CASE" --set time.end=1e-7 --out "$TMP/oversubscribed" --threads $((cores + 1))
 
 # Output times that are not whole steps are rounded with a note, kept in run.json.
 mp notes run "$CASE" --set time.end=2.5e-7 --set output.frame_interval=1.05e-7 --out "$TMP/notes" \
@@ -436,15 +431,9 @@ else
   fail "seeded_no_force: exit $rc, or the folder changed"
   show seeded_no_force
 fi
-mp repeat_no_force run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 --set output.history_interval=1e-6 --out "$OUT" \
-  --threads 2
-if [[ $rc -eq 2 ]] && grep -qF "run.json: case shock_rod, model paper, completed at step 2000" \
-  "$TMP/repeat_no_force.err"; then
-  ok "repeat_no_force: a second run into a finished run's folder is refused, naming what is there"
-else
-  fail "repeat_no_force: exit $rc"
-  show repeat_no_force
-fi
+expect_exit repeat_no_force 2 "run.json: case shock_rod, model paper, completed at step 2000" -- \
+  run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 \
+  --set output.history_interval=1e-6 --out "$OUT" --threads 2
 
 # --set in the folder name: runs of one case with other overrides do not collide.
 (cd "$TMP" && timeout 300 "$BIN" run "$OLDPWD/$CASE" --set time.end=1e-7 --threads 1 \
