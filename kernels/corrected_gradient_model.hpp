@@ -62,6 +62,9 @@ class CorrectedGradientModel {
   static constexpr const char* name = Law::name;
   static constexpr bool uses_rotation = false;
   static constexpr bool rotation_invariant = Law::rotation_invariant;
+  // The hourglass term reads positions: the force pass ends with a barrier
+  // before the integration moves them.
+  static constexpr bool forces_read_positions = true;
   static constexpr const char* options_section = Law::name;
   static std::vector<OptionSpec> options() { return hourglass_option_table(); }
 

@@ -1,6 +1,9 @@
 #pragma once
 // The paper's elastic MPS model (MODEL.md section 2), as two gather passes,
-// and its energy-consistent variant (MODEL.md section 4b).
+// and its energy-consistent variant (MODEL.md section 4b). Each bond's
+// kinematics (r_ij, u_ij, 1 / |r_ij|, u_ij . e_ij) are computed once per step
+// by its owner into its slot (kernels/bond_slots.hpp); both passes gather
+// from the slots, each particle in its CSR order.
 //
 // Pass 1, strain and pressure, for every particle (walls and rigid included):
 //   eps_i = (d / n0) sum_j w0_ij (u_ij . e_ij) / |r0_ij|,   p_i = -lambda_i eps_i
@@ -18,10 +21,14 @@
 // gradient adds, per bond, -C_ij u^s_ij to the force and
 // 1/2 C_ij |r_ij| (u_ij x e_ij) = 1/2 C_ij (u_ij x r_ij) to the torque of
 // each end.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "kernels/bond_loop.hpp"
+#include "kernels/bond_slots.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/option_table.hpp"
@@ -36,14 +43,20 @@ class PaperModelT {
   static constexpr const char* name = EnergyConsistent ? "paper_conservative" : "paper";
   static constexpr bool uses_rotation = true;
   static constexpr bool rotation_invariant = true;
+  // The force pass reads the strain pass's slots and pressures, never a
+  // position: a block's forces and integration need no barrier between them.
+  static constexpr bool forces_read_positions = false;
   static constexpr const char* options_section = "";  // no options
   static std::vector<OptionSpec> options() { return {}; }
 
   PaperModelT() = default;  // no bonds: only a placeholder to assign a model to
   // The per-bond coefficients (MODEL.md sections 2.3-2.4), mu_ij the
-  // arithmetic mean of the two ends' mu.
+  // arithmetic mean of the two ends' mu; per entry, and per slot (bond_slots.hpp).
   PaperModelT(const ParticleStore& p, const BondTable& bonds, const OptionValues&)
-      : volume_(bonds.geometry.volume) {
+      : volume_(bonds.geometry.volume),
+        slots_(make_bond_slots(bonds)),
+        row_offsets_(bonds.offsets),
+        neighbor_(bonds.neighbor) {
     const double d_over_n0 = kDim / number_density(bonds);
     strain_coef_.resize(bonds.entry_count());
     spring_coef_.resize(bonds.entry_count());
@@ -58,44 +71,78 @@ class PaperModelT {
         spring_coef_[b] = volume_ * d_over_n0 * 4.0 * mu_ij * w0 / (len * len);
       }
     });
+    slot_r0x_ = slot_values(slots_, bonds, bonds.r0x);
+    slot_r0y_ = slot_values(slots_, bonds, bonds.r0y);
+    slot_strain_coef_ = slot_values(slots_, bonds, strain_coef_);
+    slot_spring_coef_ = slot_values(slots_, bonds, spring_coef_);
+    slot_pressure_coef_ = slot_strain_coef_;
+    for (double& c : slot_pressure_coef_) c = volume_ * c;  // the bits of V * coef in the old loop
+    const std::size_t count = slots_.slot_count();
+    for (auto* v : {&rx_, &ry_, &ux_, &uy_, &inv_len_, &strain_term_}) v->assign(count, 0.0);
+    if constexpr (EnergyConsistent) extension_.assign(count, 0.0);
   }
 
-  void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) const {
-    parallel_for(range.begin, range.end, [&](std::size_t i) {
-      double eps = 0.0;
-      for_each_bond(p, bonds, i, [&](std::uint32_t b, std::size_t, const auto& v, double inv_len) {
-        eps += strain_coef_[b] * bond_math::normal_extension(v, inv_len);
-      });
-      p.strain[i] = eps;
-      p.pressure[i] = -p.lambda[i] * eps;
+  // Pass 1: each bond's kinematics once (its owner's thread), then each
+  // particle's strain and pressure from its bonds' slots. Every particle's
+  // slots are computed whatever `range` is.
+  void compute_strain(ParticleStore& p, const BondTable&, Range range) {
+    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
+      compute_bond_slots(p, {b, e});
+    });
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      gather_strain(p, {b, e});
     });
   }
 
-  void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
-    const double volume = volume_;
-    parallel_for(range.begin, range.end, [&](std::size_t i) {
-      const double pi = p.pressure[i];
-      double fx = 0.0, fy = 0.0, torque = 0.0;
-      for_each_bond(p, bonds, i,
-                    [&](std::uint32_t b, std::size_t j, const auto& v, double inv_len) {
-                      const double k = spring_coef_[b];
-                      const double c = volume * strain_coef_[b] * (pi + p.pressure[j]) * inv_len;
-                      fx += k * v.ux - c * v.rx;
-                      fy += k * v.uy - c * v.ry;
-                      double bond_torque = k * bond_math::cross(v.rx, v.ry, v.ux, v.uy);
-                      if constexpr (EnergyConsistent) {
-                        // u^s = u - (u . e) e
-                        const double un = bond_math::normal_extension(v, inv_len) * inv_len;
-                        fx -= c * (v.ux - un * v.rx);
-                        fy -= c * (v.uy - un * v.ry);
-                        bond_torque += c * bond_math::cross(v.ux, v.uy, v.rx, v.ry);
-                      }
-                      torque += bond_torque;
-                    });
-      p.fx[i] = fx;
-      p.fy[i] = fy;
-      p.torque[i] = 0.5 * torque;
+  // Pass 2 (needs pass 1 at the current state): force and torque.
+  void compute_forces(ParticleStore& p, const BondTable&, Range range) const {
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      compute_forces_block(p, {b, e});
     });
+  }
+
+  // Pass 2 on one block, serially (the step fuses it with the integration).
+  void compute_forces_block(ParticleStore& p, Range block) const {
+    for_each_run(
+        slots_, block,
+        [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
+          for (std::size_t c0 = begin; c0 < end; c0 += kChunk) {
+            const std::size_t count = std::min(kChunk, end - c0);
+            double fx[kChunk] = {}, fy[kChunk] = {}, torque[kChunk] = {};
+            for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
+              const std::size_t s =
+                  static_cast<std::size_t>(pattern.slot_shift[k] + static_cast<std::ptrdiff_t>(c0));
+              const std::size_t j = static_cast<std::size_t>(pattern.partner_shift[k] +
+                                                             static_cast<std::ptrdiff_t>(c0));
+              if (pattern.partner_shift[k] > 0)
+                add_bond_forces<true>(count, &p.pressure[c0], &p.pressure[j], s, fx, fy, torque);
+              else
+                add_bond_forces<false>(count, &p.pressure[c0], &p.pressure[j], s, fx, fy, torque);
+            }
+            for (std::size_t m = 0; m < count; ++m) {
+              p.fx[c0 + m] = fx[m];
+              p.fy[c0 + m] = fy[m];
+              p.torque[c0 + m] = 0.5 * torque[m];
+            }
+          }
+        },
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i) {
+            double fx = 0.0, fy = 0.0, torque = 0.0;
+            for (std::uint32_t b = row_begin(i); b < row_begin(i + 1); ++b) {
+              const std::size_t j = neighbor_[b];
+              if (j > i)
+                add_bond_forces<true>(1, &p.pressure[i], &p.pressure[j], slots_.entry_slot[b], &fx,
+                                      &fy, &torque);
+              else
+                add_bond_forces<false>(1, &p.pressure[i], &p.pressure[j], slots_.entry_slot[b], &fx,
+                                       &fy, &torque);
+            }
+            p.fx[i] = fx;
+            p.fy[i] = fy;
+            p.torque[i] = 0.5 * torque;
+          }
+        });
   }
 
   // Strain energy of particle i (MODEL.md section 4b): its share of
@@ -148,9 +195,130 @@ class PaperModelT {
   const std::vector<double>& spring_coefficients() const { return spring_coef_; }
 
  private:
+  static constexpr std::size_t kChunk = 256;  // particles per gather chunk (accumulators in L1)
+
+  std::uint32_t row_begin(std::size_t i) const { return row_offsets_[i]; }
+
+  // Pass 1a for the bonds owned by `owners`.
+  void compute_bond_slots(const ParticleStore& p, Range owners) {
+    const auto bonds = [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
+      bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
+                      &p.half_cos[j], &p.half_sin[j], &slot_r0x_[slot], &slot_r0y_[slot],
+                      &slot_strain_coef_[slot], &rx_[slot], &ry_[slot], &ux_[slot], &uy_[slot],
+                      &inv_len_[slot], &strain_term_[slot],
+                      EnergyConsistent ? &extension_[slot] : nullptr);
+    };
+    for_each_owned_slot(slots_, owners, bonds, [&](std::size_t slot, std::size_t i, std::size_t j) {
+      bonds(1, slot, i, j);
+    });
+  }
+
+  // r_ij, u_ij, 1 / |r_ij|, the normal extension and its strain term, for
+  // `count` bonds (i + m, j + m) into slots slot + m. Unit stride and no
+  // aliasing (a static function of restrict pointers): GCC vectorises it.
+  static void bond_kinematics(std::size_t count, const double* __restrict xi,
+                              const double* __restrict yi, const double* __restrict ci,
+                              const double* __restrict si, const double* __restrict xj,
+                              const double* __restrict yj, const double* __restrict cj,
+                              const double* __restrict sj, const double* __restrict r0x,
+                              const double* __restrict r0y, const double* __restrict coef,
+                              double* __restrict rx, double* __restrict ry, double* __restrict ux,
+                              double* __restrict uy, double* __restrict inv_len,
+                              double* __restrict term, double* __restrict extension) {
+    for (std::size_t m = 0; m < count; ++m) {
+      const auto rot = bond_math::bond_rotation(ci[m], si[m], cj[m], sj[m]);
+      const auto v = bond_math::bond_vectors(xi[m], yi[m], xj[m], yj[m], rot, r0x[m], r0y[m]);
+      const double il = 1.0 / std::sqrt(v.rx * v.rx + v.ry * v.ry);
+      const double ext = bond_math::normal_extension(v, il);
+      rx[m] = v.rx;
+      ry[m] = v.ry;
+      ux[m] = v.ux;
+      uy[m] = v.uy;
+      inv_len[m] = il;
+      term[m] = coef[m] * ext;
+      if constexpr (EnergyConsistent) extension[m] = ext;
+    }
+  }
+
+  // Pass 1b: eps_i = sum of its bonds' strain terms in CSR order.
+  void gather_strain(ParticleStore& p, Range block) const {
+    const double* term = strain_term_.data();
+    for_each_run(
+        slots_, block,
+        [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
+          for (std::size_t c0 = begin; c0 < end; c0 += kChunk) {
+            const std::size_t count = std::min(kChunk, end - c0);
+            double eps[kChunk] = {};
+            for (const std::ptrdiff_t shift : pattern.slot_shift) {
+              const double* __restrict t = term + (shift + static_cast<std::ptrdiff_t>(c0));
+              for (std::size_t m = 0; m < count; ++m) eps[m] += t[m];
+            }
+            for (std::size_t m = 0; m < count; ++m) {
+              p.strain[c0 + m] = eps[m];
+              p.pressure[c0 + m] = -p.lambda[c0 + m] * eps[m];
+            }
+          }
+        },
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i) {
+            double eps = 0.0;
+            for (std::uint32_t b = row_begin(i); b < row_begin(i + 1); ++b)
+              eps += term[slots_.entry_slot[b]];
+            p.strain[i] = eps;
+            p.pressure[i] = -p.lambda[i] * eps;
+          }
+        });
+  }
+
+  // The force and torque terms of `count` bonds in slots slot + m on particles
+  // i + m (pressures pi[m], partners' pj[m]), added to fx, fy, torque[m]. The
+  // owner's r_ij and u_ij are stored; the other end's are their negatives,
+  // so its force term is the owner's negated: bit for bit what it computed
+  // before.
+  template <bool Owner>
+  void add_bond_forces(std::size_t count, const double* pi, const double* pj, std::size_t slot,
+                       double* fx, double* fy, double* torque) const {
+    bond_forces<Owner>(count, pi, pj, &slot_spring_coef_[slot], &slot_pressure_coef_[slot],
+                       &rx_[slot], &ry_[slot], &ux_[slot], &uy_[slot], &inv_len_[slot],
+                       EnergyConsistent ? &extension_[slot] : nullptr, fx, fy, torque);
+  }
+
+  template <bool Owner>
+  static void bond_forces(std::size_t count, const double* __restrict pi,
+                          const double* __restrict pj, const double* __restrict k,
+                          const double* __restrict vc, const double* __restrict rx,
+                          const double* __restrict ry, const double* __restrict ux,
+                          const double* __restrict uy, const double* __restrict inv_len,
+                          const double* __restrict extension, double* __restrict fx,
+                          double* __restrict fy, double* __restrict torque) {
+    for (std::size_t m = 0; m < count; ++m) {
+      const double c = vc[m] * (pi[m] + pj[m]) * inv_len[m];
+      const double tx = k[m] * ux[m] - c * rx[m];
+      const double ty = k[m] * uy[m] - c * ry[m];
+      fx[m] = Owner ? fx[m] + tx : fx[m] - tx;
+      fy[m] = Owner ? fy[m] + ty : fy[m] - ty;
+      double bond_torque = k[m] * bond_math::cross(rx[m], ry[m], ux[m], uy[m]);
+      if constexpr (EnergyConsistent) {
+        // u^s = u - (u . e) e
+        const double un = extension[m] * inv_len[m];
+        const double gx = c * (ux[m] - un * rx[m]);
+        const double gy = c * (uy[m] - un * ry[m]);
+        fx[m] = Owner ? fx[m] - gx : fx[m] + gx;
+        fy[m] = Owner ? fy[m] - gy : fy[m] + gy;
+        bond_torque += c * bond_math::cross(ux[m], uy[m], rx[m], ry[m]);
+      }
+      torque[m] += bond_torque;
+    }
+  }
+
   double volume_ = 0;
-  std::vector<double> strain_coef_;
-  std::vector<double> spring_coef_;
+  BondSlots slots_;
+  std::vector<std::uint32_t> row_offsets_, neighbor_;  // the bond table's rows
+  std::vector<double> strain_coef_, spring_coef_;      // per entry
+  // Per slot: constants, then pass 1's kinematics.
+  std::vector<double> slot_r0x_, slot_r0y_, slot_strain_coef_, slot_spring_coef_,
+      slot_pressure_coef_;
+  std::vector<double> rx_, ry_, ux_, uy_, inv_len_, strain_term_, extension_;
 };
 
 using PaperModel = PaperModelT<false>;

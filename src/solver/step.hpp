@@ -58,19 +58,27 @@ void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std
   constexpr bool rot = Model::uses_rotation;
   {
     TeamPhase t(timers, Phase::strain);
-    model.compute_strain(p, s.bonds, p.all());
-  }
-  {
-    TeamPhase t(timers, Phase::forces);
-    // Positions stay put during the force pass, and the switch-on is read
-    // only after its closing barrier.
+    // Positions stay put until the force pass, and the switch-on is read
+    // only after the strain pass's closing barrier.
     if (team_rank() == 0 && !s.loads.empty())
       serial_section([&] { activate_loads(p, s.loads, step); });
-    model.compute_forces(p, s.bonds, p.moving());
+    model.compute_strain(p, s.bonds, p.all());
   }
-  {
+  if constexpr (Model::forces_read_positions) {
+    {
+      TeamPhase t(timers, Phase::forces);
+      model.compute_forces(p, s.bonds, p.moving());
+    }
     TeamPhase t(timers, Phase::integrate);
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
+      integrate_block<rot>(s, dt, {b, e}, fused_bodies);
+    });
+  } else {
+    // A block's forces read no position, so its integration follows at once:
+    // one barrier less per step.
+    TeamPhase t(timers, Phase::forces);
+    parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
+      model.compute_forces_block(p, {b, e});
       integrate_block<rot>(s, dt, {b, e}, fused_bodies);
     });
   }

@@ -23,6 +23,15 @@ CaseSpec free_block_case(int nx, int ny, bool with_rigid_plate, double dt = 1e-7
 // net force: checks |f| <= tolerance there and returns how many there are.
 int expect_interior_force_free(const ParticleStore& p, double l0, double tolerance);
 
+// A fresh model's strain and force passes on the store (a model keeps its own
+// per-bond state, so its force pass needs its own strain pass first).
+template <class Model>
+void run_model_passes(ParticleStore& p, const BondTable& bonds) {
+  Model model(p, bonds, {});
+  model.compute_strain(p, bonds, p.all());
+  model.compute_forces(p, bonds, p.moving());
+}
+
 // Largest magnitude in v (0 for an empty v).
 double max_abs(const std::vector<double>& v);
 

@@ -64,7 +64,7 @@ TEST(PaperModel, AffineDisplacementGivesAnalyticStrainInTheInterior) {
     p.theta[i] = rotation;
   }
   sim.refresh_fields();
-  PaperModel(p, sim.state().bonds, {}).compute_forces(p, sim.state().bonds, p.moving());
+  testing::run_model_passes<PaperModel>(p, sim.state().bonds);
   const double l0 = sim.spec().l0;
   const double lambda = p.lambda[0];
   const double mu = p.mu[0];

@@ -28,7 +28,7 @@ Snapshot run_rod(int threads, const std::vector<std::string>& overrides) {
 
 void expect_same_bits(const std::vector<std::string>& overrides) {
   const Snapshot one = run_rod(1, overrides);
-  for (int threads : {2, 4}) {
+  for (int threads : {2, 3, 4}) {
     const Snapshot many = run_rod(threads, overrides);
     EXPECT_TRUE(testing::same_bits(one.particles, many.particles)) << threads << " threads";
     EXPECT_EQ(one.diagnostics.kinetic_energy, many.diagnostics.kinetic_energy);
@@ -39,13 +39,16 @@ void expect_same_bits(const std::vector<std::string>& overrides) {
   set_thread_count(available_cores());
 }
 
-TEST(Determinism, RodCaseIsBitIdenticalAt1And2And4Threads) {
+TEST(Determinism, RodCaseIsBitIdenticalAt1To4Threads) {
   expect_same_bits({});
 }
 
 // At l0 = 1 mm every kernel range is large enough to be split across threads.
-TEST(Determinism, FinerRodIsBitIdenticalAt1And2And4Threads) {
-  expect_same_bits({"l0=0.001"});
+TEST(Determinism, FinerRodIsBitIdenticalAt1To4ThreadsForEveryModel) {
+  for (const std::string& model : model_names()) {
+    SCOPED_TRACE(model);
+    expect_same_bits({"l0=0.001", "model=" + model});
+  }
 }
 
 // A batch of steps runs in one parallel region, with the half angles carried

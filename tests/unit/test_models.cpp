@@ -31,7 +31,7 @@ TEST(PaperConservative, KernelsMatchThePlainReference) {
   ParticleStore& p = sim.particles();
   jiggle(p, sim.spec().l0, 9, 0.4);
   sim.refresh_fields();
-  PaperConservativeModel(p, sim.state().bonds, {}).compute_forces(p, sim.state().bonds, p.moving());
+  testing::run_model_passes<PaperConservativeModel>(p, sim.state().bonds);
   const auto ref = reference::paper_model(p, sim.state().bonds, true);
   const auto plain = reference::paper_model(p, sim.state().bonds, false);
   const double fscale = testing::max_abs(ref.fx), tscale = testing::max_abs(ref.torque);

@@ -1,0 +1,101 @@
+#pragma once
+// Each bond once. The bond table stores every bond from both ends (CSR), which
+// is what a gather needs; the per-bond work (rotation, r_ij, u_ij, 1 / |r_ij|)
+// is done once per bond, by its lower end (the owner), into the bond's slot,
+// and both ends gather from it. Every per-bond operation is symmetric under
+// i <-> j (bond_math.hpp), so a slot holds the bits each end computed for
+// itself before: the same results, with half the arithmetic.
+//
+// Slot layout, chosen so that the hot loops run over contiguous memory:
+// - dense slots: for each common index offset o = j - i > 0 (a "direction"),
+//   one array of n slots, bond (i, i + o) at d * n + i. A lattice body stored
+//   row by row has the same offsets at every interior particle, so the
+//   owner pass is a unit-stride loop per direction. A dense slot without a
+//   bond is computed and never read.
+// - extra slots: bonds whose offset is no direction (between bodies, a few
+//   per body), after the dense ones, with their owner and partner listed.
+// Particles whose rows have one pattern of offsets (a lattice interior)
+// form runs: the k-th entry of particle m reads slot shift_k + m, the same
+// shift for every m of the run, so a gather loops over m with unit stride.
+// Other particles use the per-entry slot index. Either way a particle adds
+// its bonds in CSR order: the same bits at any thread count, on either path.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "src/core/bonds.hpp"
+#include "src/core/types.hpp"
+
+namespace mpsolid {
+
+struct BondSlots {
+  // The gather of a run: entry k of particle m reads slot slot_shift[k] + m
+  // and partner m + partner_shift[k]; m owns the bond when partner_shift > 0.
+  struct Pattern {
+    std::vector<std::ptrdiff_t> slot_shift;
+    std::vector<std::ptrdiff_t> partner_shift;
+  };
+  // Consecutive particles [begin, end) on one path; pattern < 0: per entry.
+  struct Run {
+    std::size_t begin = 0, end = 0;
+    std::int32_t pattern = -1;
+  };
+
+  std::size_t particles = 0;
+  std::vector<std::size_t> directions;                    // offsets with a dense array, ascending
+  std::size_t dense_slots = 0;                            // directions.size() * particles
+  std::vector<std::uint32_t> extra_owner, extra_partner;  // slot dense_slots + k, by owner
+  std::vector<std::uint32_t> entry_slot;                  // slot of each bond table entry
+  std::vector<Pattern> patterns;
+  std::vector<Run> runs;  // cover [0, particles) in order
+
+  std::size_t slot_count() const { return dense_slots + extra_owner.size(); }
+};
+
+// Directions: the offsets used by at least particles / 8 bonds (fewer would
+// leave most of their array empty). Patterns: rows shared by at least 16
+// particles whose offsets are all directions.
+BondSlots make_bond_slots(const BondTable& bonds);
+
+// A per-slot copy of a per-entry quantity that is the same from both ends of
+// a bond (a coefficient), taken from the owner's entry; 0 in empty slots.
+std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
+                                const std::vector<double>& per_entry);
+
+// The owner pass over the bonds owned by particles in `owners`: for each
+// direction, dense(count, slot, i, j) for `count` consecutive owners from i
+// (partners from j = i + o, slots from `slot`); then extra(slot, i, j) for
+// each extra bond owned there.
+template <class Dense, class Extra>
+void for_each_owned_slot(const BondSlots& s, Range owners, Dense&& dense, Extra&& extra) {
+  const std::size_t n = s.particles;
+  for (std::size_t d = 0; d < s.directions.size(); ++d) {
+    const std::size_t o = s.directions[d];
+    const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
+    if (owners.begin < end)
+      dense(end - owners.begin, d * n + owners.begin, owners.begin, owners.begin + o);
+  }
+  const auto first = std::lower_bound(s.extra_owner.begin(), s.extra_owner.end(),
+                                      static_cast<std::uint32_t>(owners.begin));
+  for (auto k = static_cast<std::size_t>(first - s.extra_owner.begin());
+       k < s.extra_owner.size() && s.extra_owner[k] < owners.end; ++k)
+    extra(s.dense_slots + k, s.extra_owner[k], s.extra_partner[k]);
+}
+
+// The pieces of `block` by path: regular(begin, end, pattern) for the parts
+// of pattern runs, irregular(begin, end) for the rest, in index order.
+template <class Regular, class Irregular>
+void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&& irregular) {
+  auto run = std::upper_bound(s.runs.begin(), s.runs.end(), block.begin,
+                              [](std::size_t i, const BondSlots::Run& r) { return i < r.end; });
+  for (; run != s.runs.end() && run->begin < block.end; ++run) {
+    const std::size_t b = std::max(run->begin, block.begin), e = std::min(run->end, block.end);
+    if (run->pattern < 0)
+      irregular(b, e);
+    else
+      regular(b, e, s.patterns[static_cast<std::size_t>(run->pattern)]);
+  }
+}
+
+}  // namespace mpsolid
