@@ -71,15 +71,17 @@ class PaperModelT {
         spring_coef_[b] = volume_ * d_over_n0 * 4.0 * mu_ij * w0 / (len * len);
       }
     });
-    slot_r0x_ = slot_values(slots_, bonds, bonds.r0x);
-    slot_r0y_ = slot_values(slots_, bonds, bonds.r0y);
-    slot_strain_coef_ = slot_values(slots_, bonds, strain_coef_);
-    slot_spring_coef_ = slot_values(slots_, bonds, spring_coef_);
-    slot_pressure_coef_ = slot_strain_coef_;
-    for (double& c : slot_pressure_coef_) c = volume_ * c;  // the bits of V * coef in the old loop
-    const std::size_t count = slots_.slot_count();
-    for (auto* v : {&rx_, &ry_, &ux_, &uy_, &inv_len_, &strain_term_}) v->assign(count, 0.0);
-    if constexpr (EnergyConsistent) extension_.assign(count, 0.0);
+    slot_ = SlotArrays(kFields, slots_.slot_count());
+    const auto fill = [&](Field f, const std::vector<double>& per_entry) {
+      const std::vector<double> v = slot_values(slots_, bonds, per_entry);
+      std::copy(v.begin(), v.end(), slot_[f]);
+    };
+    fill(kR0x, bonds.r0x);
+    fill(kR0y, bonds.r0y);
+    fill(kStrainCoef, strain_coef_);
+    fill(kSpringCoef, spring_coef_);
+    for (std::size_t k = 0; k < slots_.slot_count(); ++k)  // the bits of V * coef in the old loop
+      slot_[kPressureCoef][k] = volume_ * slot_[kStrainCoef][k];
   }
 
   // Pass 1: each bond's kinematics once (its owner's thread), then each
@@ -130,13 +132,18 @@ class PaperModelT {
           for (std::size_t i = begin; i < end; ++i) {
             double fx = 0.0, fy = 0.0, torque = 0.0;
             for (std::uint32_t b = row_begin(i); b < row_begin(i + 1); ++b) {
-              const std::size_t j = neighbor_[b];
+              const std::size_t j = neighbor_[b], s = slots_.entry_slot[b];
+              const double pi = p.pressure[i], pj = p.pressure[j];
               if (j > i)
-                add_bond_forces<true>(1, &p.pressure[i], &p.pressure[j], slots_.entry_slot[b], &fx,
-                                      &fy, &torque);
+                add_bond_force<true>(fx, fy, torque, pi, pj, slot_[kSpringCoef][s],
+                                     slot_[kPressureCoef][s], slot_[kRx][s], slot_[kRy][s],
+                                     slot_[kUx][s], slot_[kUy][s], slot_[kInvLen][s],
+                                     extension_at(s));
               else
-                add_bond_forces<false>(1, &p.pressure[i], &p.pressure[j], slots_.entry_slot[b], &fx,
-                                       &fy, &torque);
+                add_bond_force<false>(fx, fy, torque, pi, pj, slot_[kSpringCoef][s],
+                                      slot_[kPressureCoef][s], slot_[kRx][s], slot_[kRy][s],
+                                      slot_[kUx][s], slot_[kUy][s], slot_[kInvLen][s],
+                                      extension_at(s));
             }
             p.fx[i] = fx;
             p.fy[i] = fy;
@@ -199,23 +206,49 @@ class PaperModelT {
 
   std::uint32_t row_begin(std::size_t i) const { return row_offsets_[i]; }
 
-  // Pass 1a for the bonds owned by `owners`.
+  // Pass 1a for the bonds owned by `owners`: the dense directions in unit
+  // stride, the few extra bonds one by one, with the same arithmetic.
   void compute_bond_slots(const ParticleStore& p, Range owners) {
-    const auto bonds = [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
-      bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
-                      &p.half_cos[j], &p.half_sin[j], &slot_r0x_[slot], &slot_r0y_[slot],
-                      &slot_strain_coef_[slot], &rx_[slot], &ry_[slot], &ux_[slot], &uy_[slot],
-                      &inv_len_[slot], &strain_term_[slot],
-                      EnergyConsistent ? &extension_[slot] : nullptr);
-    };
-    for_each_owned_slot(slots_, owners, bonds, [&](std::size_t slot, std::size_t i, std::size_t j) {
-      bonds(1, slot, i, j);
-    });
+    for_each_owned_slot(
+        slots_, owners,
+        [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
+          bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
+                          &p.half_cos[j], &p.half_sin[j], &slot_[kR0x][slot], &slot_[kR0y][slot],
+                          &slot_[kStrainCoef][slot], &slot_[kRx][slot], &slot_[kRy][slot],
+                          &slot_[kUx][slot], &slot_[kUy][slot], &slot_[kInvLen][slot],
+                          &slot_[kStrainTerm][slot],
+                          EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
+        },
+        [&](std::size_t s, std::size_t i, std::size_t j) {
+          const Kinematics k =
+              kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
+                         p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]);
+          slot_[kRx][s] = k.rx;
+          slot_[kRy][s] = k.ry;
+          slot_[kUx][s] = k.ux;
+          slot_[kUy][s] = k.uy;
+          slot_[kInvLen][s] = k.inv_len;
+          slot_[kStrainTerm][s] = slot_[kStrainCoef][s] * k.extension;
+          if constexpr (EnergyConsistent) slot_[kExtension][s] = k.extension;
+        });
   }
 
-  // r_ij, u_ij, 1 / |r_ij|, the normal extension and its strain term, for
-  // `count` bonds (i + m, j + m) into slots slot + m. Unit stride and no
-  // aliasing (a static function of restrict pointers): GCC vectorises it.
+  // One bond's kinematics seen from its owner i: r_ij, u_ij, 1 / |r_ij| and
+  // the normal extension u_ij . e_ij.
+  struct Kinematics {
+    double rx, ry, ux, uy, inv_len, extension;
+  };
+  static Kinematics kinematics(double xi, double yi, double ci, double si, double xj, double yj,
+                               double cj, double sj, double r0x, double r0y) {
+    const auto rot = bond_math::bond_rotation(ci, si, cj, sj);
+    const auto v = bond_math::bond_vectors(xi, yi, xj, yj, rot, r0x, r0y);
+    const double il = 1.0 / std::sqrt(v.rx * v.rx + v.ry * v.ry);
+    return {v.rx, v.ry, v.ux, v.uy, il, bond_math::normal_extension(v, il)};
+  }
+
+  // kinematics() for `count` bonds (i + m, j + m) into slots slot + m. Unit
+  // stride and no aliasing (a static function of restrict pointers): GCC
+  // vectorises it.
   static void bond_kinematics(std::size_t count, const double* __restrict xi,
                               const double* __restrict yi, const double* __restrict ci,
                               const double* __restrict si, const double* __restrict xj,
@@ -226,23 +259,21 @@ class PaperModelT {
                               double* __restrict uy, double* __restrict inv_len,
                               double* __restrict term, double* __restrict extension) {
     for (std::size_t m = 0; m < count; ++m) {
-      const auto rot = bond_math::bond_rotation(ci[m], si[m], cj[m], sj[m]);
-      const auto v = bond_math::bond_vectors(xi[m], yi[m], xj[m], yj[m], rot, r0x[m], r0y[m]);
-      const double il = 1.0 / std::sqrt(v.rx * v.rx + v.ry * v.ry);
-      const double ext = bond_math::normal_extension(v, il);
-      rx[m] = v.rx;
-      ry[m] = v.ry;
-      ux[m] = v.ux;
-      uy[m] = v.uy;
-      inv_len[m] = il;
-      term[m] = coef[m] * ext;
-      if constexpr (EnergyConsistent) extension[m] = ext;
+      const Kinematics k =
+          kinematics(xi[m], yi[m], ci[m], si[m], xj[m], yj[m], cj[m], sj[m], r0x[m], r0y[m]);
+      rx[m] = k.rx;
+      ry[m] = k.ry;
+      ux[m] = k.ux;
+      uy[m] = k.uy;
+      inv_len[m] = k.inv_len;
+      term[m] = coef[m] * k.extension;
+      if constexpr (EnergyConsistent) extension[m] = k.extension;
     }
   }
 
   // Pass 1b: eps_i = sum of its bonds' strain terms in CSR order.
   void gather_strain(ParticleStore& p, Range block) const {
-    const double* term = strain_term_.data();
+    const double* term = slot_[kStrainTerm];
     for_each_run(
         slots_, block,
         [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
@@ -270,17 +301,46 @@ class PaperModelT {
         });
   }
 
-  // The force and torque terms of `count` bonds in slots slot + m on particles
-  // i + m (pressures pi[m], partners' pj[m]), added to fx, fy, torque[m]. The
-  // owner's r_ij and u_ij are stored; the other end's are their negatives,
-  // so its force term is the owner's negated: bit for bit what it computed
-  // before.
+  // One bond's force and torque terms on one end i (pressures pi, pj),
+  // added to fx, fy, torque. The owner's r_ij and u_ij are stored; the other
+  // end's are their negatives, so its force terms are the owner's negated:
+  // bit for bit what that end computed for itself before.
+  template <bool Owner>
+  static void add_bond_force(double& fx, double& fy, double& torque, double pi, double pj, double k,
+                             double vc, double rx, double ry, double ux, double uy, double inv_len,
+                             double extension) {
+    const double c = vc * (pi + pj) * inv_len;
+    const double tx = k * ux - c * rx;
+    const double ty = k * uy - c * ry;
+    fx = Owner ? fx + tx : fx - tx;
+    fy = Owner ? fy + ty : fy - ty;
+    double bond_torque = k * bond_math::cross(rx, ry, ux, uy);
+    if constexpr (EnergyConsistent) {
+      // u^s = u - (u . e) e
+      const double un = extension * inv_len;
+      const double gx = c * (ux - un * rx);
+      const double gy = c * (uy - un * ry);
+      fx = Owner ? fx - gx : fx + gx;
+      fy = Owner ? fy - gy : fy + gy;
+      bond_torque += c * bond_math::cross(ux, uy, rx, ry);
+    }
+    torque += bond_torque;
+  }
+
+  double extension_at(std::size_t s) const {
+    if constexpr (EnergyConsistent) return slot_[kExtension][s];
+    return 0.0;
+  }
+
+  // add_bond_force() for `count` bonds in slots slot + m on particles
+  // i + m (pressures pi[m], partners' pj[m]), into fx, fy, torque[m].
   template <bool Owner>
   void add_bond_forces(std::size_t count, const double* pi, const double* pj, std::size_t slot,
                        double* fx, double* fy, double* torque) const {
-    bond_forces<Owner>(count, pi, pj, &slot_spring_coef_[slot], &slot_pressure_coef_[slot],
-                       &rx_[slot], &ry_[slot], &ux_[slot], &uy_[slot], &inv_len_[slot],
-                       EnergyConsistent ? &extension_[slot] : nullptr, fx, fy, torque);
+    bond_forces<Owner>(count, pi, pj, &slot_[kSpringCoef][slot], &slot_[kPressureCoef][slot],
+                       &slot_[kRx][slot], &slot_[kRy][slot], &slot_[kUx][slot], &slot_[kUy][slot],
+                       &slot_[kInvLen][slot], EnergyConsistent ? &slot_[kExtension][slot] : nullptr,
+                       fx, fy, torque);
   }
 
   template <bool Owner>
@@ -291,34 +351,33 @@ class PaperModelT {
                           const double* __restrict uy, const double* __restrict inv_len,
                           const double* __restrict extension, double* __restrict fx,
                           double* __restrict fy, double* __restrict torque) {
-    for (std::size_t m = 0; m < count; ++m) {
-      const double c = vc[m] * (pi[m] + pj[m]) * inv_len[m];
-      const double tx = k[m] * ux[m] - c * rx[m];
-      const double ty = k[m] * uy[m] - c * ry[m];
-      fx[m] = Owner ? fx[m] + tx : fx[m] - tx;
-      fy[m] = Owner ? fy[m] + ty : fy[m] - ty;
-      double bond_torque = k[m] * bond_math::cross(rx[m], ry[m], ux[m], uy[m]);
-      if constexpr (EnergyConsistent) {
-        // u^s = u - (u . e) e
-        const double un = extension[m] * inv_len[m];
-        const double gx = c * (ux[m] - un * rx[m]);
-        const double gy = c * (uy[m] - un * ry[m]);
-        fx[m] = Owner ? fx[m] - gx : fx[m] + gx;
-        fy[m] = Owner ? fy[m] - gy : fy[m] + gy;
-        bond_torque += c * bond_math::cross(ux[m], uy[m], rx[m], ry[m]);
-      }
-      torque[m] += bond_torque;
-    }
+    for (std::size_t m = 0; m < count; ++m)
+      add_bond_force<Owner>(fx[m], fy[m], torque[m], pi[m], pj[m], k[m], vc[m], rx[m], ry[m], ux[m],
+                            uy[m], inv_len[m], EnergyConsistent ? extension[m] : 0.0);
   }
 
   double volume_ = 0;
   BondSlots slots_;
   std::vector<std::uint32_t> row_offsets_, neighbor_;  // the bond table's rows
   std::vector<double> strain_coef_, spring_coef_;      // per entry
-  // Per slot: constants, then pass 1's kinematics.
-  std::vector<double> slot_r0x_, slot_r0y_, slot_strain_coef_, slot_spring_coef_,
-      slot_pressure_coef_;
-  std::vector<double> rx_, ry_, ux_, uy_, inv_len_, strain_term_, extension_;
+  // Per slot: constants, then pass 1's kinematics (extension: the
+  // energy-consistent variant only).
+  enum Field : std::size_t {
+    kR0x,
+    kR0y,
+    kStrainCoef,
+    kSpringCoef,
+    kPressureCoef,
+    kRx,
+    kRy,
+    kUx,
+    kUy,
+    kInvLen,
+    kStrainTerm,
+    kExtension,
+    kFields
+  };
+  SlotArrays slot_;
 };
 
 using PaperModel = PaperModelT<false>;
