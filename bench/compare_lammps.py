@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Peer comparison (issue 6): mpsolid's full paper model against LAMMPS on a
+"""Peer comparison (issues 6, 12): mpsolid's full models against LAMMPS on a
 plain harmonic bond network with the same particles and bonds
 (bench/lammps/make_input.py), measured in the same run.
 
   bench/compare_lammps.py [--l0 2e-3 1e-3 5e-4 2.5e-4] [--threads 1 2] [--reps 5]
+                          [--models paper paper_conservative finite_strain]
                           [--work 2.5e7] [--out out/bench] [--install-lammps]
 
 For every repetition, size and thread count it runs mpsolid and LAMMPS back
@@ -104,10 +105,11 @@ def run_lammps(folder, threads, openmp):
             "bonds": int(bonds[-1]) if bonds else None}
 
 
-def run_mpsolid(exe, folder, l0, steps, threads):
+def run_mpsolid(exe, folder, l0, steps, threads, model):
     end = steps * DT
     shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
     run([exe, "run", CASE, "--out", folder, "--threads", threads, "--set", f"l0={l0!r}",
+         "--set", f"model={model}",
          "--set", f"time.end={end!r}",
          # One frame at the start and one at the end, checkpoints only at the ends.
          "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"])
@@ -138,6 +140,8 @@ def main():
     ap.add_argument("--l0", type=float, nargs="+", default=[2e-3, 1e-3, 5e-4, 2.5e-4],
                     help="lattice spacings (m)")
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--models", nargs="+", default=["paper"],
+                    help="mpsolid models, each against the same LAMMPS runs (default paper)")
     ap.add_argument("--reps", type=int, default=5, help="repetitions (default 5)")
     ap.add_argument("--work", type=float, default=2.5e7,
                     help="particle-steps per run (default 2.5e7: a few seconds)")
@@ -176,14 +180,17 @@ def main():
     for rep in range(args.reps):
         for size in sizes:
             for threads in args.threads:
-                order = ["mpsolid", "lammps"] if rep % 2 == 0 else ["lammps", "mpsolid"]
+                codes = ["lammps"] + args.models
+                order = codes if rep % 2 == 1 else codes[1:] + codes[:1]
                 rates = {}
                 for code in order:
                     if code == "lammps":
                         r = run_lammps(size["folder"], threads, openmp)
                     else:
-                        folder = runs_dir / f"mpsolid_l0_{size['l0'] * 1e3:g}mm_t{threads}"
-                        r = run_mpsolid(args.mpsolid, folder, size["l0"], size["steps"], threads)
+                        folder = (runs_dir /
+                                  f"mpsolid_{code}_l0_{size['l0'] * 1e3:g}mm_t{threads}")
+                        r = run_mpsolid(args.mpsolid, folder, size["l0"], size["steps"], threads,
+                                        code)
                     if r["particles"] != size["info"]["atoms"]:
                         fail(f"{code} ran {r['particles']} particles, expected "
                              f"{size['info']['atoms']}")
@@ -191,25 +198,28 @@ def main():
                         fail(f"{code} has {r['bonds']} bonds, expected {size['info']['bonds']}")
                     rates[code] = r["particles"] * r["steps"] / r["seconds"]
                     samples.setdefault((size["l0"], threads, code), []).append(rates[code])
-                    facts.setdefault(code, r)
-                paired.setdefault((size["l0"], threads), []).append(
-                    rates["mpsolid"] / rates["lammps"])
+                    facts.setdefault("mpsolid" if code != "lammps" else code, r)
+                for model in args.models:
+                    paired.setdefault((size["l0"], threads, model), []).append(
+                        rates[model] / rates["lammps"])
                 print(f"rep {rep + 1}/{args.reps} l0 {size['l0'] * 1e3:g} mm, {threads} "
-                      f"thread(s): mpsolid {rates['mpsolid'] / 1e6:.2f}, LAMMPS "
-                      f"{rates['lammps'] / 1e6:.2f} M particle-steps/s", flush=True)
+                      f"thread(s): " + ", ".join(f"{c} {rates[c] / 1e6:.2f}" for c in codes)
+                      + " M particle-steps/s", flush=True)
 
     rows = []
-    for size in sizes:
-        for threads in args.threads:
-            ms = summary(samples[(size["l0"], threads, "mpsolid")])
-            lm = summary(samples[(size["l0"], threads, "lammps")])
-            ratio = ms["median"] / lm["median"]
-            rows.append({"l0": size["l0"], "particles": size["info"]["atoms"],
-                         "bonds": size["info"]["bonds"], "steps": size["steps"],
-                         "threads": threads, "mpsolid": ms, "lammps": lm, "ratio": ratio,
-                         "paired_ratios": summary(paired[(size["l0"], threads)])})
+    for model in args.models:
+        for size in sizes:
+            for threads in args.threads:
+                ms = summary(samples[(size["l0"], threads, model)])
+                lm = summary(samples[(size["l0"], threads, "lammps")])
+                rows.append({"model": model, "l0": size["l0"],
+                             "particles": size["info"]["atoms"], "bonds": size["info"]["bonds"],
+                             "steps": size["steps"], "threads": threads, "mpsolid": ms,
+                             "lammps": lm, "ratio": ms["median"] / lm["median"],
+                             "paired_ratios": summary(paired[(size["l0"], threads, model)])})
     for row in rows:  # speed-up over 1 thread, per code
-        one = next((r for r in rows if r["l0"] == row["l0"] and r["threads"] == 1), None)
+        one = next((r for r in rows if r["model"] == row["model"] and r["l0"] == row["l0"]
+                    and r["threads"] == 1), None)
         if one:
             row["speedup"] = {c: row[c]["median"] / one[c]["median"] for c in ("mpsolid", "lammps")}
 
@@ -242,10 +252,10 @@ def cpu_model():
 
 def markdown(meta, rows):
     out = [
-        "| l0 (mm) | particles | bonds | steps | threads | mpsolid (M particle-steps/s) "
+        "| model | l0 (mm) | particles | bonds | steps | threads | mpsolid (M particle-steps/s) "
         "| LAMMPS (M particle-steps/s) | mpsolid / LAMMPS | paired ratios (min-max) "
         "| speed-up 1 -> N: mpsolid, LAMMPS |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
         speed = r.get("speedup")
@@ -253,7 +263,7 @@ def markdown(meta, rows):
                       if speed and r["threads"] != 1 else "")
         pr = r["paired_ratios"]
         out.append(
-            f"| {r['l0'] * 1e3:g} | {r['particles']:,} | {r['bonds']:,} | {r['steps']:,} "
+            f"| {r['model']} | {r['l0'] * 1e3:g} | {r['particles']:,} | {r['bonds']:,} | {r['steps']:,} "
             f"| {r['threads']} | {fmt_rate(r['mpsolid'])} | {fmt_rate(r['lammps'])} "
             f"| **{r['ratio']:.2f}** | {pr['min']:.2f}-{pr['max']:.2f} | {speed_text} |")
     out += [
@@ -262,7 +272,7 @@ def markdown(meta, rows):
         f"({meta['started']} to {meta['finished']}); {meta['cpu']}, {meta['cores']} cores, "
         f"load average {meta['load_average_before'][0]:.2f} before and "
         f"{meta['load_average_after'][0]:.2f} after. mpsolid {meta['mpsolid_commit']} "
-        f"(paper model, Release); LAMMPS {meta['lammps_version']}, N threads = "
+        f"(Release); LAMMPS {meta['lammps_version']}, N threads = "
         f"{meta['lammps_parallel']}. Paired ratios: mpsolid / LAMMPS of the two runs made "
         "back to back in each repetition. Command: `bench/" + meta["command"] + "`.",
         "",
