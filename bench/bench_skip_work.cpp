@@ -49,9 +49,10 @@ void run_integrate(benchmark::State& state, long l0_um, bool rotation, int threa
   SolverState& s = sim.state();
   ParticleStore& p = s.particles;
   for (auto* v : {&p.fx, &p.fy, &p.torque}) std::fill(v->begin(), v->end(), 0.0);
+  BodyKicks kicks(s.rigid_bodies.size());
   auto integrate = [&]<bool Rotation>() {
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      integrate_block<Rotation>(s, sim.spec().dt, {b, e}, false);
+      integrate_block<Rotation>(s, sim.spec().dt, {b, e}, kicks);
     });
   };
   time_in_team(state, repeats_for(p.size()), [&] {

@@ -5,14 +5,22 @@
 
 #include <cstdio>
 
+#include "src/core/parallel.hpp"
+
 namespace mpsolid {
 
 bool stderr_is_terminal() {
   return ::isatty(STDERR_FILENO) == 1;
 }
 
-Progress::Progress(std::int64_t total_steps, double dt, bool enabled)
-    : total_(total_steps), dt_(dt), enabled_(enabled), start_(Clock::now()), last_(start_) {}
+Progress::Progress(std::int64_t total_steps, double dt, bool enabled, int threads)
+    : total_(total_steps),
+      dt_(dt),
+      enabled_(enabled),
+      threads_(threads),
+      start_(Clock::now()),
+      last_(start_),
+      wait_at_last_(team_wait_seconds()) {}
 
 void Progress::update(std::int64_t step) {
   if (!enabled_) return;
@@ -22,13 +30,20 @@ void Progress::update(std::int64_t step) {
     start_ = now;
   }
   if (now - last_ < std::chrono::milliseconds(500)) return;
+  const double interval = std::chrono::duration<double>(now - last_).count();
+  const double wait = team_wait_seconds();
+  const double wait_share = (wait - wait_at_last_) / (interval * threads_);
+  wait_at_last_ = wait;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = elapsed > 0 ? static_cast<double>(step - start_step_) / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(total_ - step) / rate : 0.0;
-  std::fprintf(stderr, "\r  t = %.4g ms / %.4g ms  (%5.1f %%)  %.3g steps/s  ETA %.0f s   ",
+  std::fprintf(stderr, "\r  t = %.4g ms / %.4g ms  (%5.1f %%)  %.3g steps/s  ETA %.0f s",
                1e3 * static_cast<double>(step) * dt_, 1e3 * static_cast<double>(total_) * dt_,
                100.0 * static_cast<double>(step) / static_cast<double>(total_), rate, eta);
+  // Waiting threads: an imbalance, or cores shared with other work.
+  if (threads_ > 1) std::fprintf(stderr, "  threads waiting %3.0f %%", 100.0 * wait_share);
+  std::fprintf(stderr, "   ");
   std::fflush(stderr);
   drawn_ = true;
 }

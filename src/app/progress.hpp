@@ -1,6 +1,8 @@
 #pragma once
-// Progress line on a terminal (simulated time, steps/s, ETA), redrawn at most
-// twice a second; silent when stderr is not a terminal (CI, pipes).
+// Progress line on a terminal (simulated time, steps/s, ETA and, with more
+// than one thread, the share of the threads' time spent waiting at the
+// step's barriers), redrawn at most twice a second; silent when stderr is
+// not a terminal (CI, pipes).
 #include <chrono>
 #include <cstdint>
 
@@ -8,7 +10,7 @@ namespace mpsolid {
 
 class Progress {
  public:
-  Progress(std::int64_t total_steps, double dt, bool enabled);
+  Progress(std::int64_t total_steps, double dt, bool enabled, int threads);
   void update(std::int64_t step);
   void finish();  // ends the line
 
@@ -17,7 +19,9 @@ class Progress {
   std::int64_t total_;
   double dt_;
   bool enabled_;
+  int threads_;
   Clock::time_point start_, last_;
+  double wait_at_last_ = 0;  // team_wait_seconds() at the last redraw
   std::int64_t start_step_ = -1;
   bool drawn_ = false;
 };

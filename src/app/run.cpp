@@ -147,7 +147,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     outputs.checkpoint(report_inputs(sim), now);
   };
 
-  Progress progress(every.total, sim.spec().dt, options.progress);
+  Progress progress(every.total, sim.spec().dt, options.progress, facts.threads);
   if (fresh) {
     write_frame(sim.diagnostics());
     checkpoint();
@@ -199,6 +199,7 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
   };
   facts.steps = sim.step() - facts.start_step;
   facts.wall_seconds = seconds_since_start();
+  facts.thread_wait_seconds = team_wait_seconds() - facts.wait_at_start;
   {
     auto t = sim.timers().time(Phase::output);
     outputs.publish();
@@ -260,6 +261,7 @@ RunFacts begin_segment(const RunOptions& options, std::int64_t start_step) {
   facts.overrides = options.overrides;
   facts.threads = thread_count();
   facts.start_step = start_step;
+  facts.wait_at_start = team_wait_seconds();
   return facts;
 }
 

@@ -1,6 +1,16 @@
 #include "src/core/parallel.hpp"
 
 #include <omp.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define MPSOLID_PAUSE() _mm_pause()
+#else
+#define MPSOLID_PAUSE() ((void)0)
+#endif
+
+#include <chrono>
+#include <memory>
+#include <thread>
 
 #include "src/core/float_mode.hpp"
 
@@ -39,6 +49,30 @@ void fork_join_blocks(std::size_t begin, std::size_t end,
   }
 }
 
+namespace {
+using Clock = std::chrono::steady_clock;
+
+// One team at a time (a team inside a team runs inline).
+struct alignas(64) Padded {
+  std::atomic<std::size_t> value{0};
+};
+struct TeamState {
+  std::unique_ptr<Padded[]> counters;  // 2 x team size chunk counters
+  std::size_t size = 0;
+  Padded arrived, generation;
+};
+TeamState team_state;
+std::atomic<std::int64_t> total_wait_ns{0};
+thread_local Clock::duration thread_wait{};
+
+// Spin this long at a barrier before yielding the core.
+constexpr auto kSpin = std::chrono::microseconds(20);
+}  // namespace
+
+std::atomic<std::size_t>& chunk_counter(std::size_t parity, std::size_t rank) {
+  return team_state.counters[parity * team_state.size + rank].value;
+}
+
 void run_team(void (*body)(void*), void* context) {
   const int threads = omp_get_max_threads();
   SubnormalModeScope mode;
@@ -46,19 +80,48 @@ void run_team(void (*body)(void*), void* context) {
     body(context);
     return;
   }
+  const auto size = static_cast<std::size_t>(threads);
+  team_state.counters = std::make_unique<Padded[]>(2 * size);
+  team_state.size = size;
+  team_state.arrived.value = 0;
 #pragma omp parallel num_threads(threads)
   {
     SubnormalModeScope thread_mode;
+    thread_wait = {};
     team_slot = {static_cast<std::size_t>(omp_get_thread_num()),
-                 static_cast<std::size_t>(omp_get_num_threads())};
+                 static_cast<std::size_t>(omp_get_num_threads()), 0};
     body(context);
     team_slot = {};
+    total_wait_ns.fetch_add(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(thread_wait).count(),
+        std::memory_order_relaxed);
   }
 }
 
+// A counting barrier: the last thread to arrive opens the next generation.
+// The others spin briefly (a step's phases are microseconds apart), then
+// yield, so that on a busy machine a waiting thread gives its core to the
+// thread it waits for, or to another process, instead of burning it.
 void team_barrier() {
-#pragma omp barrier
+  const auto start = Clock::now();
+  const std::size_t generation = team_state.generation.value.load(std::memory_order_acquire);
+  if (team_state.arrived.value.fetch_add(1, std::memory_order_acq_rel) + 1 == team_slot.size) {
+    team_state.arrived.value.store(0, std::memory_order_relaxed);
+    team_state.generation.value.store(generation + 1, std::memory_order_release);
+  } else {
+    while (team_state.generation.value.load(std::memory_order_acquire) == generation) {
+      if (Clock::now() - start < kSpin)
+        MPSOLID_PAUSE();
+      else
+        std::this_thread::yield();
+    }
+  }
+  thread_wait += Clock::now() - start;
 }
 }  // namespace detail
+
+double team_wait_seconds() {
+  return 1e-9 * static_cast<double>(detail::total_wait_ns.load(std::memory_order_relaxed));
+}
 
 }  // namespace mpsolid

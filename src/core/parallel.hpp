@@ -6,14 +6,23 @@
 // - Outside a team, parallel_for opens one parallel region per call
 //   (fork/join), as set-up, diagnostics and tests use it.
 // - Inside run_in_team (one parallel region for many steps), every thread runs
-//   the same code; parallel_for hands each thread its static block of the
-//   range and ends with a barrier, like an orphaned `omp for`. The kernels
-//   are the same functions in both cases. Code between loops runs on every
+//   the same code; parallel_blocks splits the range into one static block
+//   per thread, each cut into a few chunks: a thread takes its own block's
+//   chunks first, then any chunks left in the others' blocks, and the loop
+//   ends with a barrier. On an idle machine every thread keeps its own
+//   particles from one loop to the next; on a busy one a thread that the OS
+//   has descheduled leaves its chunks to the others instead of holding
+//   everybody up. Which thread runs a chunk never changes a result: every
+//   kernel is a gather, each index writes only its own outputs. The
+//   barrier spins for a few microseconds, then yields the core to whatever
+//   else wants it, and counts the time each thread waits. Code between loops runs on every
 //   thread, so it may only read shared data or write per-thread locals;
 //   shared scalars are written in a serial_section (one thread) that a
 //   barrier separates from their readers.
 // Inside a block callback or a serial section the thread is serial: a
 // parallel_for there runs inline.
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <type_traits>
 
@@ -31,6 +40,7 @@ namespace detail {
 struct TeamSlot {
   std::size_t rank = 0;
   std::size_t size = 0;
+  std::size_t loop = 0;  // team loops this thread has entered (the same on every thread)
 };
 extern thread_local TeamSlot team_slot;
 
@@ -40,6 +50,9 @@ void fork_join_blocks(std::size_t begin, std::size_t end,
                       void (*block)(void*, std::size_t, std::size_t), void* context);
 void run_team(void (*body)(void*), void* context);
 void team_barrier();
+// The chunk counter of `rank`'s block for loops of parity `parity`: two
+// sets used by alternate loops, so that a loop can clear its successor's.
+std::atomic<std::size_t>& chunk_counter(std::size_t parity, std::size_t rank);
 
 // Marks the thread serial for its lifetime (restores the slot after).
 class SerialScope {
@@ -61,6 +74,18 @@ inline Range static_block(std::size_t begin, std::size_t end, std::size_t rank, 
   return {begin + count * rank / size, begin + count * (rank + 1) / size};
 }
 
+// A team loop's chunk length in a block of `count` indices: a few chunks per
+// block (the granularity a busy thread's work is taken over at), none
+// shorter than 64 indices.
+inline std::size_t chunk_length(std::size_t count) {
+  constexpr std::size_t kChunksPerBlock = 8, kMinChunk = 64;
+  return std::max(kMinChunk, (count + kChunksPerBlock - 1) / kChunksPerBlock);
+}
+
+// Seconds the team's threads have spent waiting at barriers, summed over
+// threads and teams since the program started (added when a team ends).
+double team_wait_seconds();
+
 // True on a thread that runs inside a team and is not serial.
 inline bool in_team() {
   return detail::team_slot.size != 0;
@@ -81,10 +106,21 @@ template <class Block>
 void parallel_blocks(std::size_t begin, std::size_t end, Block&& block) {
   if (begin >= end) return;  // the same on every thread of a team: no barrier needed
   if (in_team()) {
-    const Range r = static_block(begin, end, team_rank(), team_size());
+    const std::size_t rank = team_rank(), size = team_size();
+    const std::size_t parity = detail::team_slot.loop++ & 1;
+    // The previous loop, the other parity's last user, has passed its barrier.
+    detail::chunk_counter(parity ^ 1, rank).store(0, std::memory_order_relaxed);
     {
       detail::SerialScope serial;
-      if (r.begin < r.end) block(r.begin, r.end);
+      for (std::size_t k = 0; k < size; ++k) {  // this thread's block first
+        const std::size_t owner = (rank + k) % size;
+        const Range r = static_block(begin, end, owner, size);
+        const std::size_t length = chunk_length(r.size());
+        std::atomic<std::size_t>& next = detail::chunk_counter(parity, owner);
+        for (std::size_t c = next.fetch_add(1, std::memory_order_relaxed); c * length < r.size();
+             c = next.fetch_add(1, std::memory_order_relaxed))
+          block(r.begin + c * length, std::min(r.end, r.begin + (c + 1) * length));
+      }
     }
     detail::team_barrier();
     return;

@@ -37,6 +37,12 @@ Json phases_json(const PhaseTimers& timers, const RunFacts& facts) {
 double rate(const RunFacts& facts) {
   return facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0.0;
 }
+
+// The threads' time waiting at barriers, and its share of threads x wall time.
+double wait_share(const RunFacts& facts) {
+  const double capacity = facts.wall_seconds * facts.threads;
+  return capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0;
+}
 }  // namespace
 
 Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
@@ -52,7 +58,9 @@ Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
           {"bytes_written", facts.bytes_written},
           {"checkpoints", facts.checkpoints},
           {"checkpoint_bytes", facts.checkpoint_bytes},
-          {"phase_seconds", phases_json(in.timers, facts)}};
+          {"phase_seconds", phases_json(in.timers, facts)},
+          {"thread_wait_seconds", facts.thread_wait_seconds},
+          {"thread_wait_share", wait_share(facts)}};
 }
 
 std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
@@ -89,6 +97,10 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                  {"steps_per_second", steps_per_second},
                  {"particle_steps_per_second", steps_per_second * static_cast<double>(particles)},
                  {"phase_seconds", phases_json(in.timers, facts)},
+                 // Summed over the threads: time spent at the step's barriers
+                 // waiting for the slowest (an imbalance, or a busy machine).
+                 {"thread_wait_seconds", facts.thread_wait_seconds},
+                 {"thread_wait_share", wait_share(facts)},
                  {"segments", segments}};
   // The estimate behind time.dt = "auto", if it was used.
   if (const StableStepEstimate& e = in.stable_step; e.iterations > 0)

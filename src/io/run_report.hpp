@@ -43,6 +43,8 @@ struct RunFacts {
   int checkpoints = 0;                  // checkpoints written
   std::uintmax_t checkpoint_bytes = 0;  // their size
   double checkpoint_seconds = 0;        // wall time writing them (output snapshots included)
+  double wait_at_start = 0;             // team_wait_seconds() when the segment started
+  double thread_wait_seconds = 0;       // threads' time at barriers in this segment, summed
 };
 
 // What a report shows besides the facts: the case, the state reached, the

@@ -4,16 +4,17 @@
 // integrate, half angles -> rigid-body projection.
 //
 // A batch of steps runs in one parallel region (run_in_team): each phase is
-// a loop over static per-thread particle blocks that ends with a barrier, and
-// the serial bookkeeping (a load switching on, a rigid body's pose) is done
-// by one thread. A thread's block of the moving particles is the same in the
-// force pass and the integration, so loads, kick, drift and the new half
-// angles of a particle need no barrier between them; a rigid body whose
-// particles all lie in one block is projected by that block's thread right
-// after its kick (one barrier less per step). Every particle's arithmetic is
-// the same at any thread count and batch size: the same bits.
+// a loop over chunks of per-thread particle blocks that ends with a barrier
+// (src/core/parallel.hpp), and the serial bookkeeping (a load switching on)
+// is done by one thread. Loads, kick, drift and the new half angles of a
+// particle follow its force in the same chunk, with no barrier between; a
+// rigid body is projected by the thread that kicks its last particles. Every
+// particle's arithmetic is the same at any thread count, chunking and batch
+// size: the same bits.
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "src/core/half_angles.hpp"
 #include "src/core/integrator.hpp"
@@ -34,26 +35,46 @@ void update_strain(Model& model, SolverState& s, PhaseTimers& timers) {
   model.compute_strain(s.particles, s.bonds, s.particles.all());
 }
 
-// Loads, holds, kick, drift and half angles of the moving particles in one block,
-// and the projection of the rigid bodies inside it when `project_bodies`.
+// Counts, per rigid body, its particles kicked in the current step: the
+// thread that kicks the last of them projects the body (the projection reads
+// all of them), whichever chunks and threads kicked the rest.
+class BodyKicks {
+ public:
+  explicit BodyKicks(std::size_t bodies) : kicked_(bodies) {}
+  // Adds `count` kicked particles of body k; true for the call that completes it.
+  bool completes(std::size_t k, std::size_t count, std::size_t size) {
+    if (kicked_[k].fetch_add(count, std::memory_order_acq_rel) + count != size) return false;
+    kicked_[k].store(0, std::memory_order_relaxed);  // read again only after the step's barrier
+    return true;
+  }
+
+ private:
+  std::vector<std::atomic<std::size_t>> kicked_;
+};
+
+// Loads, holds, kick, drift and half angles of the moving particles in one
+// block, and the projection of each rigid body whose last particles it kicks.
 template <bool Rotation>
-void integrate_block(SolverState& s, double dt, Range block, bool project_bodies) {
+void integrate_block(SolverState& s, double dt, Range block, BodyKicks& kicks) {
   ParticleStore& p = s.particles;
   apply_loads(p, s.loads, block);
   if (!s.holds.empty()) clear_held_forces(p, s.holds, block);
   kick_drift(p, {block.begin, std::min(block.end, p.elastic.end)}, dt, Rotation);
   kick(p, {std::max(block.begin, p.rigid.begin), block.end}, dt, Rotation);
-  if (!project_bodies) return;
-  for (RigidBody& body : s.rigid_bodies)
-    if (block.begin <= body.range.begin && body.range.end <= block.end)
+  for (std::size_t k = 0; k < s.rigid_bodies.size(); ++k) {
+    RigidBody& body = s.rigid_bodies[k];
+    const std::size_t b = std::max(block.begin, body.range.begin);
+    const std::size_t e = std::min(block.end, body.range.end);
+    if (b < e && kicks.completes(k, e - b, body.range.size()))
       project_rigid_body(p, body, dt, Rotation);
+  }
 }
 
 // One step, called by every thread of the team. Needs the half angles of
 // the current rotations (the previous step's integration leaves them).
 template <class Model>
 void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std::int64_t step,
-               bool fused_bodies) {
+               BodyKicks& kicks) {
   ParticleStore& p = s.particles;
   constexpr bool rot = Model::uses_rotation;
   {
@@ -71,7 +92,7 @@ void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std
     }
     TeamPhase t(timers, Phase::integrate);
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      integrate_block<rot>(s, dt, {b, e}, fused_bodies);
+      integrate_block<rot>(s, dt, {b, e}, kicks);
     });
   } else {
     // A block's forces read no position, so its integration follows at once:
@@ -79,13 +100,8 @@ void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std
     TeamPhase t(timers, Phase::forces);
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
       model.compute_forces_block(p, {b, e});
-      integrate_block<rot>(s, dt, {b, e}, fused_bodies);
+      integrate_block<rot>(s, dt, {b, e}, kicks);
     });
-  }
-  if (!fused_bodies && !s.rigid_bodies.empty()) {
-    TeamPhase t(timers, Phase::rigid_bodies);
-    parallel_for(0, s.rigid_bodies.size(),
-                 [&](std::size_t k) { project_rigid_body(p, s.rigid_bodies[k], dt, rot); });
   }
 }
 
@@ -95,14 +111,13 @@ void advance_steps(Model& model, SolverState& s, double dt, PhaseTimers& timers,
                    std::int64_t steps) {
   if (steps <= 0) return;
   const std::int64_t first = s.step;
+  BodyKicks kicks(s.rigid_bodies.size());
   run_in_team([&] {
     if constexpr (Model::uses_rotation) {
       TeamPhase t(timers, Phase::half_angles);
       compute_half_angles(s.particles, s.particles.moving());
     }
-    const bool fused_bodies = bodies_in_single_blocks(s);
-    for (std::int64_t k = 0; k < steps; ++k)
-      team_step(model, s, dt, timers, first + k, fused_bodies);
+    for (std::int64_t k = 0; k < steps; ++k) team_step(model, s, dt, timers, first + k, kicks);
   });
   s.step = first + steps;
 }

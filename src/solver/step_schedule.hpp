@@ -1,7 +1,5 @@
 #pragma once
-// How one step is spread over the threads of a team (src/core/parallel.hpp):
-// which thread times a phase, and whether a rigid body can be projected by
-// the thread that kicked its particles.
+// Which thread of a team times a step's phases (src/core/parallel.hpp).
 #include <optional>
 
 #include "src/core/parallel.hpp"
@@ -21,21 +19,5 @@ class TeamPhase {
  private:
   std::optional<PhaseTimers::Scope> scope_;
 };
-
-// True when every rigid body lies inside one static block of the moving
-// particles, so its projection can follow its particles' kick on one thread.
-inline bool bodies_in_single_blocks(const SolverState& s) {
-  const Range moving = s.particles.moving();
-  const std::size_t threads = team_size();
-  for (const RigidBody& body : s.rigid_bodies) {
-    bool inside = false;
-    for (std::size_t r = 0; r < threads && !inside; ++r) {
-      const Range block = static_block(moving.begin, moving.end, r, threads);
-      inside = block.begin <= body.range.begin && body.range.end <= block.end;
-    }
-    if (!inside) return false;
-  }
-  return true;
-}
 
 }  // namespace mpsolid
