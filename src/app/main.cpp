@@ -54,6 +54,11 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads,
                   "OpenMP threads (default: OMP_NUM_THREADS if set, else all cores)")
       ->check(CLI::Range(1, 4096));
+  bool fixed_threads = false;
+  const char* fixed_help =
+      "keep --threads for the whole run (by default a busy machine, where waiting threads make "
+      "the run slower, gets fewer; the results are the same bits either way)";
+  run->add_flag("--fixed-threads", fixed_threads, fixed_help);
   run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
       ->allow_extra_args(false)
       ->type_name("KEY=VALUE");
@@ -65,6 +70,7 @@ int main(int argc, char** argv) {
       ->add_option("--threads", threads,
                    "OpenMP threads (default: OMP_NUM_THREADS if set, else all cores)")
       ->check(CLI::Range(1, 4096));
+  resume->add_flag("--fixed-threads", fixed_threads, fixed_help);
   resume
       ->add_option("--set", overrides,
                    "go on to a later end: --set time.end=0.02 (also output.checkpoint_interval, "
@@ -91,6 +97,7 @@ int main(int argc, char** argv) {
       RunOptions options;
       options.out_dir = resume_dir;
       options.threads = chosen_threads(threads);
+      options.adaptive_threads = !fixed_threads;
       options.progress = stderr_is_terminal();
       options.command_line = command_line;
       options.overrides = overrides;
@@ -103,6 +110,7 @@ int main(int argc, char** argv) {
     options.force = force;
     options.overrides = overrides;
     options.threads = chosen_threads(threads);
+    options.adaptive_threads = !fixed_threads;
     options.progress = stderr_is_terminal();
     options.command_line = command_line;
     return run_case(spec, options);

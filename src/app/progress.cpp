@@ -22,7 +22,7 @@ Progress::Progress(std::int64_t total_steps, double dt, bool enabled, int thread
       last_(start_),
       wait_at_last_(team_wait_seconds()) {}
 
-void Progress::update(std::int64_t step) {
+void Progress::update(std::int64_t step, int team) {
   if (!enabled_) return;
   const auto now = Clock::now();
   if (start_step_ < 0) {
@@ -32,7 +32,7 @@ void Progress::update(std::int64_t step) {
   if (now - last_ < std::chrono::milliseconds(500)) return;
   const double interval = std::chrono::duration<double>(now - last_).count();
   const double wait = team_wait_seconds();
-  const double wait_share = (wait - wait_at_last_) / (interval * threads_);
+  const double wait_share = (wait - wait_at_last_) / (interval * team);
   wait_at_last_ = wait;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
@@ -42,7 +42,8 @@ void Progress::update(std::int64_t step) {
                1e3 * static_cast<double>(step) * dt_, 1e3 * static_cast<double>(total_) * dt_,
                100.0 * static_cast<double>(step) / static_cast<double>(total_), rate, eta);
   // Waiting threads: an imbalance, or cores shared with other work.
-  if (threads_ > 1) std::fprintf(stderr, "  threads waiting %3.0f %%", 100.0 * wait_share);
+  if (team > 1) std::fprintf(stderr, "  threads waiting %3.0f %%", 100.0 * wait_share);
+  if (team < threads_) std::fprintf(stderr, "  (%d of %d threads: busy machine)", team, threads_);
   std::fprintf(stderr, "   ");
   std::fflush(stderr);
   drawn_ = true;

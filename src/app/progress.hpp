@@ -11,7 +11,8 @@ namespace mpsolid {
 class Progress {
  public:
   Progress(std::int64_t total_steps, double dt, bool enabled, int threads);
-  void update(std::int64_t step);
+  // `team`: the threads the last batch ran on (fewer than asked on a busy machine).
+  void update(std::int64_t step, int team);
   void finish();  // ends the line
 
  private:

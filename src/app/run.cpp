@@ -12,6 +12,7 @@
 #include "src/app/memory_check.hpp"
 #include "src/app/progress.hpp"
 #include "src/app/signals.hpp"
+#include "src/app/thread_governor.hpp"
 #include "src/core/hash.hpp"
 #include "src/core/parallel.hpp"
 #include "src/core/state_snapshot.hpp"
@@ -154,11 +155,19 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
   }
   StateSnapshot last_good = StateSnapshot::capture(sim.state());
   facts.outcome = Outcome::completed;
+  ThreadGovernor governor(facts.threads, options.adaptive_threads);
   while (sim.step() < every.total) {
     const std::int64_t next = every.next_stop(sim.step());
     while (sim.step() < next && !stop_requested()) {
-      sim.advance(std::min(every.chunk, next - sim.step()));
-      progress.update(sim.step());
+      set_thread_count(governor.threads());
+      const auto started = std::chrono::steady_clock::now();
+      const double waited = team_wait_seconds();
+      const std::int64_t steps = std::min(every.chunk, next - sim.step());
+      sim.advance(steps);
+      governor.record(
+          steps, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+          team_wait_seconds() - waited);
+      progress.update(sim.step(), governor.threads());
     }
     Diagnostics d;
     const StabilityVerdict verdict = sim.check_stability(&d);
@@ -189,6 +198,9 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     }
   }
   progress.finish();
+  set_thread_count(facts.threads);
+  facts.team_size_changes = governor.changes();
+  facts.team_size_seconds.assign(governor.seconds_at().begin(), governor.seconds_at().end());
 }
 
 // Publishes the outputs, writes the run's last checkpoint (an unstable state

@@ -14,7 +14,8 @@ struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 1;
   bool progress = false;
-  bool force = false;  // replace an earlier run's results in out_dir
+  bool force = false;            // replace an earlier run's results in out_dir
+  bool adaptive_threads = true;  // fewer threads when waiting makes them slower (thread_governor)
   std::string command_line;
   std::vector<std::string> overrides;  // the --set values, for run.json
 };

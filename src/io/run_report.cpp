@@ -38,6 +38,12 @@ double rate(const RunFacts& facts) {
   return facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0.0;
 }
 
+Json team_sizes_json(const RunFacts& facts) {
+  Json sizes = Json::object();
+  for (const auto& [size, seconds] : facts.team_size_seconds) sizes[std::to_string(size)] = seconds;
+  return sizes;
+}
+
 // The threads' time waiting at barriers, and its share of threads x wall time.
 double wait_share(const RunFacts& facts) {
   const double capacity = facts.wall_seconds * facts.threads;
@@ -60,7 +66,9 @@ Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
           {"checkpoint_bytes", facts.checkpoint_bytes},
           {"phase_seconds", phases_json(in.timers, facts)},
           {"thread_wait_seconds", facts.thread_wait_seconds},
-          {"thread_wait_share", wait_share(facts)}};
+          {"thread_wait_share", wait_share(facts)},
+          {"team_size_seconds", team_sizes_json(facts)},
+          {"team_size_changes", facts.team_size_changes}};
 }
 
 std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
@@ -101,6 +109,10 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                  // waiting for the slowest (an imbalance, or a busy machine).
                  {"thread_wait_seconds", facts.thread_wait_seconds},
                  {"thread_wait_share", wait_share(facts)},
+                 // Seconds stepped at each team size: fewer than `threads`
+                 // where waiting on a busy machine made them slower.
+                 {"team_size_seconds", team_sizes_json(facts)},
+                 {"team_size_changes", facts.team_size_changes},
                  {"segments", segments}};
   // The estimate behind time.dt = "auto", if it was used.
   if (const StableStepEstimate& e = in.stable_step; e.iterations > 0)

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "src/case/case_spec.hpp"
@@ -45,6 +46,10 @@ struct RunFacts {
   double checkpoint_seconds = 0;        // wall time writing them (output snapshots included)
   double wait_at_start = 0;             // team_wait_seconds() when the segment started
   double thread_wait_seconds = 0;       // threads' time at barriers in this segment, summed
+  // Wall seconds stepped at each team size, and how often the size changed
+  // (src/app/thread_governor.hpp).
+  std::vector<std::pair<int, double>> team_size_seconds;
+  int team_size_changes = 0;
 };
 
 // What a report shows besides the facts: the case, the state reached, the

@@ -363,6 +363,23 @@ else
   fail "omp_one: exit $rc or run.json threads != 1"
   show omp_one
 fi
+# Waiting threads and the team sizes used are in run.json; --fixed-threads
+# keeps the requested size (the governor may use fewer on a busy machine).
+mp fixed_threads run "$CASE" --set time.end=2e-5 --out "$TMP/fixed_threads" --threads 2 --fixed-threads
+if [[ $rc -eq 0 ]] && python3 - "$TMP/fixed_threads/run.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+ok = (r["threads"] == 2 and list(r["team_size_seconds"]) == ["2"] and r["team_size_changes"] == 0
+      and 0 <= r["thread_wait_share"] <= 1 and r["thread_wait_seconds"] >= 0
+      and "thread_wait_share" in r["segments"][-1])
+sys.exit(0 if ok else 1)
+PY
+then
+  ok "fixed_threads: run.json has the wait and the team size, 2 threads throughout"
+else
+  fail "fixed_threads: exit $rc or run.json lacks the wait or the team sizes"
+  show fixed_threads
+fi
 cores=$(nproc)
 expect_exit oversubscribed 0 "warning: $((cores + 1)) threads" -- \
   run "$CASE" --set time.end=1e-7 --out "$TMP/oversubscribed" --threads $((cores + 1))

@@ -1,10 +1,12 @@
 // The thread count of a run: --threads, else OMP_NUM_THREADS, else every
 // core; a bad OMP_NUM_THREADS is bad input; more threads than cores warn.
+// The governor that gives up threads that only wait on a busy machine.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
 #include "src/app/thread_choice.hpp"
+#include "src/app/thread_governor.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -64,6 +66,56 @@ TEST(ThreadChoice, MoreThreadsThanCoresWarn) {
   EXPECT_EQ(many.threads, 5);
   EXPECT_NE(many.warning.find("5 threads"), std::string::npos) << many.warning;
   EXPECT_NE(many.warning.find("2 cores"), std::string::npos) << many.warning;
+}
+
+// Feeds the governor one measuring window (a quarter of a second) at its
+// current size: `rate` steps per second, the threads waiting `wait_share`
+// of their time.
+void window(ThreadGovernor& g, double rate, double wait_share) {
+  for (int k = 0; k < 5; ++k)
+    g.record(static_cast<std::int64_t>(rate * 0.05), 0.05, wait_share * 0.05 * g.threads());
+}
+
+TEST(ThreadGovernor, KeepsTheRequestedSizeWhileThreadsHardlyWait) {
+  ThreadGovernor g(2, true);
+  for (int k = 0; k < 100; ++k) window(g, 1000, 0.05);
+  EXPECT_EQ(g.threads(), 2);
+  EXPECT_EQ(g.changes(), 0);
+}
+
+TEST(ThreadGovernor, DropsAThreadThatOnlyWaitsAndTriesItAgainLater) {
+  ThreadGovernor g(2, true);
+  window(g, 1000, 0.4);  // waiting: try 1 thread
+  EXPECT_EQ(g.threads(), 1);
+  window(g, 1800, 0.0);  // faster: kept
+  EXPECT_EQ(g.threads(), 1);
+  EXPECT_EQ(g.changes(), 1);
+  int windows = 0;
+  while (g.threads() == 1 && windows < 1000) {
+    window(g, 1800, 0.0);
+    ++windows;
+  }
+  EXPECT_EQ(g.threads(), 2);  // the retry, after a while
+  EXPECT_GT(windows, 10);
+  window(g, 900, 0.4);  // still slower: back to 1
+  EXPECT_EQ(g.threads(), 1);
+  EXPECT_NEAR(g.seconds_at().at(1) + g.seconds_at().at(2), 0.25 * (windows + 3), 1e-9);
+}
+
+TEST(ThreadGovernor, ReturnsWhenFewerThreadsAreNotFaster) {
+  ThreadGovernor g(4, true);
+  window(g, 1000, 0.3);
+  EXPECT_EQ(g.threads(), 3);
+  window(g, 1020, 0.3);  // within 5 %: not worth it
+  EXPECT_EQ(g.threads(), 4);
+  EXPECT_EQ(g.changes(), 0);
+}
+
+TEST(ThreadGovernor, FixedThreadsNeverChange) {
+  ThreadGovernor g(2, false);
+  for (int k = 0; k < 20; ++k) window(g, 1000, 0.9);
+  EXPECT_EQ(g.threads(), 2);
+  EXPECT_EQ(g.seconds_at().size(), 1u);
 }
 
 }  // namespace
