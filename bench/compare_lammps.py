@@ -105,10 +105,17 @@ def run_lammps(folder, threads, openmp):
             "bonds": int(bonds[-1]) if bonds else None}
 
 
+def fixed_threads_flag(exe):
+    """--fixed-threads where the build has it (a scaling measurement must not
+    let a busy moment change the team size); older builds keep it anyway."""
+    return ["--fixed-threads"] if "--fixed-threads" in run([exe, "run", "--help"]).stdout else []
+
+
 def run_mpsolid(exe, folder, l0, steps, threads, model):
     end = steps * DT
     shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
-    run([exe, "run", CASE, "--out", folder, "--threads", threads, "--set", f"l0={l0!r}",
+    run([exe, "run", CASE, "--out", folder, "--threads", threads, *fixed_threads_flag(exe),
+         "--set", f"l0={l0!r}",
          "--set", f"model={model}",
          "--set", f"time.end={end!r}",
          # One frame at the start and one at the end, checkpoints only at the ends.
