@@ -8,10 +8,10 @@
 
 namespace mpsolid {
 
-// Peak bytes per particle, bonds included: measured 731 B (paper model, 1.1 M
-// particles, docs/peer_comparison.md), with room for the corrected-gradient
-// models' per-particle tensors and per-bond arrays.
-inline constexpr double kBytesPerParticle = 900;
+// Peak bytes per particle, bonds included: measured 1,434 B marginal (paper
+// model, 0.28 to 1.13 M particles, bench/memory_rod.py; its bond slots hold
+// 12 arrays of about 6.4 slots per particle), with some room.
+inline constexpr double kBytesPerParticle = 1650;
 
 // MemAvailable of /proc/meminfo in bytes, or 0 when it cannot be read.
 std::uint64_t available_memory_bytes();

@@ -399,7 +399,7 @@ fi
 # A case too large for the machine's memory is refused before set-up, with
 # the estimate and what is available (l0 chosen for twice the available memory).
 avail=$(awk '/^MemAvailable:/ {print $2 * 1024}' /proc/meminfo)
-l0=$(awk -v a="$avail" 'BEGIN { l = sqrt(0.00452 * 900 / (2 * a)); if (l < 4.5e-6) l = 4.5e-6; printf "%.3g", l }')
+l0=$(awk -v a="$avail" 'BEGIN { l = sqrt(0.00452 * 1650 / (2 * a)); if (l < 4.5e-6) l = 4.5e-6; printf "%.3g", l }')
 expect_bad_input memory "need about" "GiB" "available" "larger l0" -- \
   run "$CASE" --set "l0=$l0" --out "$SEEDED" --threads 1
 
