@@ -80,24 +80,28 @@ BondSlots make_bond_slots(const BondTable& bonds);
 std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
                                 const std::vector<double>& per_entry);
 
-// The owner pass over the bonds owned by particles in `owners`: for each
-// direction, dense(count, slot, i, j) for `count` consecutive owners from i
-// (partners from j = i + o, slots from `slot`); then extra(slot, i, j) for
-// each extra bond owned there.
+// The owner pass over the bonds owned by particles in `owners`, except the
+// bonds between two particles below `fixed_end` (walls: stored first, never
+// moving): for each direction, dense(count, slot, i, j) for `count`
+// consecutive owners from i (partners from j = i + o, slots from `slot`);
+// then extra(slot, i, j) for each extra bond owned there.
 template <class Dense, class Extra>
-void for_each_owned_slot(const BondSlots& s, Range owners, Dense&& dense, Extra&& extra) {
+void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
+                         Extra&& extra) {
   const std::size_t n = s.particles;
   for (std::size_t d = 0; d < s.directions.size(); ++d) {
     const std::size_t o = s.directions[d];
+    // Owners below fixed_end - o have their partner below fixed_end too.
+    const std::size_t begin = std::max(owners.begin, fixed_end > o ? fixed_end - o : 0);
     const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
-    if (owners.begin < end)
-      dense(end - owners.begin, d * n + owners.begin, owners.begin, owners.begin + o);
+    if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
   }
   const auto first = std::lower_bound(s.extra_owner.begin(), s.extra_owner.end(),
                                       static_cast<std::uint32_t>(owners.begin));
   for (auto k = static_cast<std::size_t>(first - s.extra_owner.begin());
        k < s.extra_owner.size() && s.extra_owner[k] < owners.end; ++k)
-    extra(s.dense_slots + k, s.extra_owner[k], s.extra_partner[k]);
+    if (s.extra_partner[k] >= fixed_end)
+      extra(s.dense_slots + k, s.extra_owner[k], s.extra_partner[k]);
 }
 
 // The pieces of `block` by path: regular(begin, end, pattern) for the parts

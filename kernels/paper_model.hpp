@@ -208,9 +208,15 @@ class PaperModelT {
 
   // Pass 1a for the bonds owned by `owners`: the dense directions in unit
   // stride, the few extra bonds one by one, with the same arithmetic.
+  // Bonds between two walls are skipped: walls never move or turn (half
+  // angles exactly 1 and 0), so their u_ij is exactly 0 and their strain
+  // term a zero, which leaves every sum it would join unchanged (a sum that
+  // starts at +0 only gains ±0 as +0 + ±0 = +0, and x + ±0 = x otherwise);
+  // their slots keep the zeros they were made with, and no force pass reads
+  // them (walls are not moving).
   void compute_bond_slots(const ParticleStore& p, Range owners) {
     for_each_owned_slot(
-        slots_, owners,
+        slots_, owners, p.walls.end,
         [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
           bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
                           &p.half_cos[j], &p.half_sin[j], &slot_[kR0x][slot], &slot_[kR0y][slot],
