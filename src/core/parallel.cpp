@@ -52,16 +52,22 @@ void fork_join_blocks(std::size_t begin, std::size_t end,
 namespace {
 using Clock = std::chrono::steady_clock;
 
-// One team at a time (a team inside a team runs inline).
 struct alignas(64) Padded {
   std::atomic<std::size_t> value{0};
 };
+}  // namespace
+
+// One per team, on the stack of the thread that starts it: teams started by
+// different threads of a program do not share it.
 struct TeamState {
+  explicit TeamState(std::size_t threads)
+      : counters(std::make_unique<Padded[]>(2 * threads)), size(threads) {}
   std::unique_ptr<Padded[]> counters;  // 2 x team size chunk counters
-  std::size_t size = 0;
+  std::size_t size;
   Padded arrived, generation;
 };
-TeamState team_state;
+
+namespace {
 std::atomic<std::int64_t> total_wait_ns{0};
 thread_local Clock::duration thread_wait{};
 
@@ -70,7 +76,8 @@ constexpr auto kSpin = std::chrono::microseconds(20);
 }  // namespace
 
 std::atomic<std::size_t>& chunk_counter(std::size_t parity, std::size_t rank) {
-  return team_state.counters[parity * team_state.size + rank].value;
+  TeamState& team = *team_slot.team;
+  return team.counters[parity * team.size + rank].value;
 }
 
 void run_team(void (*body)(void*), void* context) {
@@ -80,16 +87,13 @@ void run_team(void (*body)(void*), void* context) {
     body(context);
     return;
   }
-  const auto size = static_cast<std::size_t>(threads);
-  team_state.counters = std::make_unique<Padded[]>(2 * size);
-  team_state.size = size;
-  team_state.arrived.value = 0;
+  TeamState team(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     SubnormalModeScope thread_mode;
     thread_wait = {};
     team_slot = {static_cast<std::size_t>(omp_get_thread_num()),
-                 static_cast<std::size_t>(omp_get_num_threads()), 0};
+                 static_cast<std::size_t>(omp_get_num_threads()), 0, &team};
     body(context);
     team_slot = {};
     total_wait_ns.fetch_add(
@@ -103,6 +107,7 @@ void run_team(void (*body)(void*), void* context) {
 // yield, so that on a busy machine a waiting thread gives its core to the
 // thread it waits for, or to another process, instead of burning it.
 void team_barrier() {
+  TeamState& team_state = *team_slot.team;
   const auto start = Clock::now();
   const std::size_t generation = team_state.generation.value.load(std::memory_order_acquire);
   if (team_state.arrived.value.fetch_add(1, std::memory_order_acq_rel) + 1 == team_slot.size) {

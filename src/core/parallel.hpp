@@ -37,10 +37,12 @@ int available_cores();
 namespace detail {
 // This thread's place in the running team; size 0 outside a team or while
 // the thread is serial (then parallel_for runs inline).
+struct TeamState;  // the team's barrier and chunk counters (parallel.cpp)
 struct TeamSlot {
   std::size_t rank = 0;
   std::size_t size = 0;
-  std::size_t loop = 0;  // team loops this thread has entered (the same on every thread)
+  std::size_t loop = 0;       // team loops this thread has entered (the same on every thread)
+  TeamState* team = nullptr;  // shared by the team's threads, owned by run_team
 };
 extern thread_local TeamSlot team_slot;
 

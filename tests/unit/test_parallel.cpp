@@ -55,6 +55,27 @@ TEST(TeamLoops, AHeldUpThreadsChunksAreTakenByTheOthers) {
   }
 }
 
+// Teams started by two threads of a program (two simulations side by side)
+// have their own barrier and chunk counters.
+TEST(TeamLoops, TeamsOfTwoProgramThreadsDoNotMix) {
+  constexpr std::size_t n = 3000;
+  std::vector<std::vector<int>> hits(2, std::vector<int>(n, 0));
+  std::vector<std::thread> starters;
+  for (std::size_t t = 0; t < 2; ++t)
+    starters.emplace_back([&, t] {
+      set_thread_count(2);
+      run_in_team([&] {
+        for (int loop = 0; loop < 200; ++loop)
+          parallel_blocks(0, n, [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) ++hits[t][i];
+          });
+      });
+    });
+  for (auto& s : starters) s.join();
+  for (const auto& h : hits)
+    for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(h[i], 200) << i;
+}
+
 TEST(TeamLoops, TimeWaitingAtBarriersIsCounted) {
   set_thread_count(2);
   const double before = team_wait_seconds();
