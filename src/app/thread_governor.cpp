@@ -21,22 +21,39 @@ void ThreadGovernor::end_window() {
   const double wait_share = wait_ / (seconds_ * current_);
   steps_ = 0;
   seconds_ = wait_ = 0;
-  ++windows_since_change_;
-  if (trial_from_ != 0) {  // a trial window ends: keep the faster size
-    if (!(rate > kBetter * rate_before_)) current_ = trial_from_;
-    changes_ += current_ != trial_from_;
-    trial_from_ = 0;
-    windows_since_change_ = 0;
-    return;
+  if (++windows_ == 1) return;  // start-up
+  switch (stage_) {
+    case Stage::trial:  // back to the base size for one window
+      rate_trial_ = rate;
+      current_ = base_;
+      stage_ = Stage::check;
+      return;
+    case Stage::check: {
+      const bool better = rate_trial_ > kBetter * std::max(rate_before_, rate);
+      if (better) {
+        current_ = trial_;
+        ++changes_;
+      }
+      if (trial_ > base_)
+        retry_after_ = better ? kFirstRetry : std::min(2 * retry_after_, kLastRetry);
+      stage_ = Stage::steady;
+      windows_since_change_ = 0;
+      return;
+    }
+    case Stage::steady:
+      break;
   }
+  ++windows_since_change_;
   const auto start_trial = [&](int size) {
-    trial_from_ = current_;
+    base_ = current_;
+    trial_ = size;
     rate_before_ = rate;
     current_ = size;
+    stage_ = Stage::trial;
   };
   if (current_ > 1 && wait_share > kWaitShare)
     start_trial(current_ - 1);
-  else if (current_ < requested_ && windows_since_change_ >= kWindowsBeforeRetry)
+  else if (current_ < requested_ && windows_since_change_ >= retry_after_)
     start_trial(current_ + 1);
 }
 

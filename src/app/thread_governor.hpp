@@ -2,12 +2,18 @@
 // The team size of each batch of steps. A result does not depend on it (the
 // same bits at any thread count), so the run may change it: on a machine
 // busy with other work, a thread that the OS deschedules holds the team up
-// at every barrier, and fewer threads can be faster than more. When the
-// threads spend more than a fifth of their time waiting (over a window of
-// about a second), the governor measures one thread fewer for a window and
-// keeps whichever ran more steps per second; below the requested size it
-// tries one more every ten windows. On an idle machine the threads hardly
-// wait and the requested size is kept. --fixed-threads turns it off.
+// at every barrier, and fewer threads can be faster than more.
+//
+// It measures windows of about a quarter of a second. When the threads
+// spent more than a fifth of their time waiting, it runs one window with
+// one thread fewer, then one more with the current size again, and keeps
+// the smaller team only if it beat both neighbouring windows by 5 % (the
+// cost of a step drifts as a run goes on: a trial must beat the windows on
+// both sides of it). Below the requested size it tries one thread more
+// the same way, after 1 s, then after twice as long each time that fails
+// (at most 16 s). The first window is not judged (start-up). On an idle
+// machine the threads hardly wait and the requested size is kept.
+// --fixed-threads turns it off.
 #include <cstdint>
 #include <map>
 
@@ -26,23 +32,29 @@ class ThreadGovernor {
   const std::map<int, double>& seconds_at() const { return seconds_at_; }
   int changes() const { return changes_; }
 
+  static constexpr double kWindowSeconds = 0.25;
+
  private:
   void end_window();
 
-  static constexpr double kWindowSeconds = 0.25;
   static constexpr double kWaitShare = 0.2;  // waiting above this: try one thread fewer
-  static constexpr int kWindowsBeforeRetry = 40;
-  static constexpr double kBetter = 1.05;  // a trial must be this much faster to stay
+  static constexpr double kBetter = 1.05;    // a trial must be this much faster to stay
+  static constexpr int kFirstRetry = 4, kLastRetry = 64;  // windows before trying one more
+
+  enum class Stage { steady, trial, check };
 
   int requested_, current_;
   bool adaptive_;
   // The window being measured.
   std::int64_t steps_ = 0;
   double seconds_ = 0, wait_ = 0;
-  // A trial: the size it left and that size's rate; 0 when none.
-  int trial_from_ = 0;
-  double rate_before_ = 0;
+  int windows_ = 0;
+  // A trial: the size tried, the rate before it and its own rate.
+  Stage stage_ = Stage::steady;
+  int base_ = 0, trial_ = 0;
+  double rate_before_ = 0, rate_trial_ = 0;
   int windows_since_change_ = 0;
+  int retry_after_ = kFirstRetry;
   int changes_ = 0;
   std::map<int, double> seconds_at_;
 };

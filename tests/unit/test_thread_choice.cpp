@@ -68,12 +68,12 @@ TEST(ThreadChoice, MoreThreadsThanCoresWarn) {
   EXPECT_NE(many.warning.find("2 cores"), std::string::npos) << many.warning;
 }
 
-// Feeds the governor one measuring window (a quarter of a second) at its
-// current size: `rate` steps per second, the threads waiting `wait_share`
-// of their time.
+// Feeds the governor one measuring window at its current size: `rate`
+// steps per second, the threads waiting `wait_share` of their time.
 void window(ThreadGovernor& g, double rate, double wait_share) {
+  const double dt = ThreadGovernor::kWindowSeconds / 5;
   for (int k = 0; k < 5; ++k)
-    g.record(static_cast<std::int64_t>(rate * 0.05), 0.05, wait_share * 0.05 * g.threads());
+    g.record(static_cast<std::int64_t>(rate * dt), dt * 1.0000001, wait_share * dt * g.threads());
 }
 
 TEST(ThreadGovernor, KeepsTheRequestedSizeWhileThreadsHardlyWait) {
@@ -85,29 +85,42 @@ TEST(ThreadGovernor, KeepsTheRequestedSizeWhileThreadsHardlyWait) {
 
 TEST(ThreadGovernor, DropsAThreadThatOnlyWaitsAndTriesItAgainLater) {
   ThreadGovernor g(2, true);
+  window(g, 1000, 0.4);  // start-up: not judged
+  EXPECT_EQ(g.threads(), 2);
   window(g, 1000, 0.4);  // waiting: try 1 thread
   EXPECT_EQ(g.threads(), 1);
-  window(g, 1800, 0.0);  // faster: kept
+  window(g, 1800, 0.0);  // the trial; then 2 threads again for one window
+  EXPECT_EQ(g.threads(), 2);
+  window(g, 1000, 0.4);  // the trial beat both sides: kept
   EXPECT_EQ(g.threads(), 1);
   EXPECT_EQ(g.changes(), 1);
+  // Tries 2 threads again after 4 windows; they are still slower, so the
+  // next try waits twice as long.
   int windows = 0;
-  while (g.threads() == 1 && windows < 1000) {
+  while (g.threads() == 1 && windows < 100) {
     window(g, 1800, 0.0);
     ++windows;
   }
-  EXPECT_EQ(g.threads(), 2);  // the retry, after a while
-  EXPECT_GT(windows, 10);
-  window(g, 900, 0.4);  // still slower: back to 1
+  EXPECT_EQ(g.threads(), 2);
+  EXPECT_EQ(windows, 4);
+  window(g, 1000, 0.4);  // the trial at 2: slower
+  window(g, 1800, 0.0);  // back at 1 for the check
   EXPECT_EQ(g.threads(), 1);
-  EXPECT_NEAR(g.seconds_at().at(1) + g.seconds_at().at(2), 0.25 * (windows + 3), 1e-9);
+  windows = 0;
+  while (g.threads() == 1 && windows < 100) {
+    window(g, 1800, 0.0);
+    ++windows;
+  }
+  EXPECT_EQ(windows, 8);
 }
 
-TEST(ThreadGovernor, ReturnsWhenFewerThreadsAreNotFaster) {
-  ThreadGovernor g(4, true);
-  window(g, 1000, 0.3);
-  EXPECT_EQ(g.threads(), 3);
-  window(g, 1020, 0.3);  // within 5 %: not worth it
-  EXPECT_EQ(g.threads(), 4);
+TEST(ThreadGovernor, ATrialMustBeatTheWindowsOnBothSides) {
+  ThreadGovernor g(2, true);
+  window(g, 1000, 0.4);
+  window(g, 1000, 0.4);  // try 1 thread
+  window(g, 1300, 0.0);  // the trial: faster than before it ...
+  window(g, 1400, 0.3);  // ... but not than after it (the run got cheaper)
+  EXPECT_EQ(g.threads(), 2);
   EXPECT_EQ(g.changes(), 0);
 }
 
