@@ -7,7 +7,7 @@ cd "$(dirname "$0")/../.."
 bin=${1:-build/release/mpsolid}
 out=$(mktemp -d)
 "$bin" run cases/shock_rod.toml --threads 1 --out "$out" \
-  --set time.end=2e-4 --set output.frame_interval=2e-5
+  --set time.end=2e-4 --set output.frame_interval=2e-5 --set output.history_interval=2e-5
 cp "$out/history.csv" tests/regression/data/shock_rod_paper_history.csv
 /usr/bin/python3 - "$out/frames.h5" tests/regression/data/shock_rod_paper_particles.csv <<'PY'
 import sys, h5py
