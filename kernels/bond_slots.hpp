@@ -119,4 +119,33 @@ void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&
   }
 }
 
+// Particles per gather chunk: a chunk's accumulators stay in L1.
+inline constexpr std::size_t kGatherChunk = 256;
+
+// A gather over the particles of `block`, each adding its bonds in CSR
+// order. On pattern runs, in chunks of at most kGatherChunk particles:
+// entry(count, m, j, slot, owner) for the k-th entries of the `count`
+// particles from m, whose partners start at j and slots at `slot` (all with
+// unit stride; owner: m < j), one call per k in row order, then
+// finish(m, count). Each particle off the patterns: row(i).
+template <class Entry, class Finish, class Row>
+void gather_rows(const BondSlots& s, Range block, Entry&& entry, Finish&& finish, Row&& row) {
+  for_each_run(
+      s, block,
+      [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
+        for (std::size_t c0 = begin; c0 < end; c0 += kGatherChunk) {
+          const std::size_t count = std::min(kGatherChunk, end - c0);
+          const auto c = static_cast<std::ptrdiff_t>(c0);
+          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k)
+            entry(count, c0, static_cast<std::size_t>(c + pattern.partner_shift[k]),
+                  static_cast<std::size_t>(c + pattern.slot_shift[k]),
+                  pattern.partner_shift[k] > 0);
+          finish(c0, count);
+        }
+      },
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) row(i);
+      });
+}
+
 }  // namespace mpsolid

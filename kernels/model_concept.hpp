@@ -29,7 +29,7 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
   { M::name } -> std::convertible_to<const char*>;
   { M::uses_rotation } -> std::convertible_to<bool>;       // spins and half angles are integrated
   { M::rotation_invariant } -> std::convertible_to<bool>;  // a rigid rotation is stress-free
-  // false: compute_forces_block(p, block) serially gives a block's forces
+  // false: compute_forces_block(p, bonds, block) serially gives a block's forces
   // from the strain pass's fields alone, so the step integrates the block
   // right after it with no barrier.
   { M::forces_read_positions } -> std::convertible_to<bool>;
@@ -43,7 +43,7 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
   // The model's measure of a broken state (an inverted bond, a collapsed J).
   { cm.check_integrity(cp, bonds, limits) } -> std::same_as<IntegrityReport>;
 }
-&&(M::forces_read_positions ||
-   requires(const M cm, ParticleStore& p, Range range) { cm.compute_forces_block(p, range); });
+&&(M::forces_read_positions || requires(const M cm, ParticleStore& p, const BondTable& bonds,
+                                        Range range) { cm.compute_forces_block(p, bonds, range); });
 
 }  // namespace mpsolid

@@ -25,12 +25,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "kernels/bond_loop.hpp"
 #include "kernels/bond_slots.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
+#include "src/core/half_angles.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/parallel.hpp"
 #include "src/core/particle_store.hpp"
@@ -53,24 +55,8 @@ class PaperModelT {
   // The per-bond coefficients (MODEL.md sections 2.3-2.4), mu_ij the
   // arithmetic mean of the two ends' mu; per entry, and per slot (bond_slots.hpp).
   PaperModelT(const ParticleStore& p, const BondTable& bonds, const OptionValues&)
-      : volume_(bonds.geometry.volume),
-        slots_(make_bond_slots(bonds)),
-        row_offsets_(bonds.offsets),
-        neighbor_(bonds.neighbor) {
-    const double d_over_n0 = kDim / number_density(bonds);
-    strain_coef_.resize(bonds.entry_count());
-    spring_coef_.resize(bonds.entry_count());
-    parallel_for(0, p.size(), [&](std::size_t i) {
-      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const std::size_t j = bonds.neighbor[b];
-        const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
-        const double len = std::sqrt(r0x * r0x + r0y * r0y);
-        const double w0 = bond_math::weight(len, bonds.geometry.re);
-        const double mu_ij = 0.5 * (p.mu[i] + p.mu[j]);
-        strain_coef_[b] = d_over_n0 * w0 / len;
-        spring_coef_[b] = volume_ * d_over_n0 * 4.0 * mu_ij * w0 / (len * len);
-      }
-    });
+      : volume_(bonds.geometry.volume), slots_(make_bond_slots(bonds)) {
+    const EntryCoefficients c = entry_coefficients(p, bonds);
     slot_ = SlotArrays(kFields, slots_.slot_count());
     const auto fill = [&](Field f, const std::vector<double>& per_entry) {
       const std::vector<double> v = slot_values(slots_, bonds, per_entry);
@@ -78,95 +64,122 @@ class PaperModelT {
     };
     fill(kR0x, bonds.r0x);
     fill(kR0y, bonds.r0y);
-    fill(kStrainCoef, strain_coef_);
-    fill(kSpringCoef, spring_coef_);
+    fill(kStrainCoef, c.strain);
+    fill(kSpringCoef, c.spring);
     for (std::size_t k = 0; k < slots_.slot_count(); ++k)  // the bits of V * coef in the old loop
       slot_[kPressureCoef][k] = volume_ * slot_[kStrainCoef][k];
+    // Bonds between two walls once and for all (the slot pass skips them):
+    // walls stay at x0 with theta = 0, whose half angles are exactly 1 and 0.
+    const HalfAngle rest = half_angle(0.0);
+    for (std::size_t i = 0; i < p.walls.end; ++i)
+      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+        const std::size_t j = bonds.neighbor[b];
+        if (j <= i || j >= p.walls.end) continue;
+        store_kinematics(slots_.entry_slot[b],
+                         kinematics(p.x0[i], p.y0[i], rest.cos, rest.sin, p.x0[j], p.y0[j],
+                                    rest.cos, rest.sin, bonds.r0x[b], bonds.r0y[b]));
+      }
+  }
+
+  // The per-bond coefficients of every bond table entry (MODEL.md sections
+  // 2.3-2.4), mu_ij the arithmetic mean of the two ends' mu:
+  // strain (d / n0) w0_ij / |r0_ij|, spring k_ij = V (d / n0) 4 mu_ij w0_ij / |r0_ij|^2
+  // (N/m). The same from both ends of a bond, so the model keeps one per slot.
+  struct EntryCoefficients {
+    std::vector<double> strain, spring;
+  };
+  static EntryCoefficients entry_coefficients(const ParticleStore& p, const BondTable& bonds) {
+    const double d_over_n0 = kDim / number_density(bonds);
+    const double volume = bonds.geometry.volume;
+    EntryCoefficients c{std::vector<double>(bonds.entry_count()),
+                        std::vector<double>(bonds.entry_count())};
+    parallel_for(0, p.size(), [&](std::size_t i) {
+      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+        const std::size_t j = bonds.neighbor[b];
+        const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
+        const double len = std::sqrt(r0x * r0x + r0y * r0y);
+        const double w0 = bond_math::weight(len, bonds.geometry.re);
+        const double mu_ij = 0.5 * (p.mu[i] + p.mu[j]);
+        c.strain[b] = d_over_n0 * w0 / len;
+        c.spring[b] = volume * d_over_n0 * 4.0 * mu_ij * w0 / (len * len);
+      }
+    });
+    return c;
   }
 
   // Pass 1: each bond's kinematics once (its owner's thread), then each
   // particle's strain and pressure from its bonds' slots. Every particle's
   // slots are computed whatever `range` is.
-  void compute_strain(ParticleStore& p, const BondTable&, Range range) {
+  void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
     parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
       compute_bond_slots(p, {b, e});
     });
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      gather_strain(p, {b, e});
+      gather_strain(p, bonds, {b, e});
     });
   }
 
   // Pass 2 (needs pass 1 at the current state): force and torque.
-  void compute_forces(ParticleStore& p, const BondTable&, Range range) const {
+  void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      compute_forces_block(p, {b, e});
+      compute_forces_block(p, bonds, {b, e});
     });
   }
 
   // Pass 2 on one block, serially (the step fuses it with the integration).
-  void compute_forces_block(ParticleStore& p, Range block) const {
-    for_each_run(
+  void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
+    double fx[kGatherChunk] = {}, fy[kGatherChunk] = {}, torque[kGatherChunk] = {};
+    gather_rows(
         slots_, block,
-        [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
-          for (std::size_t c0 = begin; c0 < end; c0 += kChunk) {
-            const std::size_t count = std::min(kChunk, end - c0);
-            double fx[kChunk] = {}, fy[kChunk] = {}, torque[kChunk] = {};
-            for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
-              const std::size_t s =
-                  static_cast<std::size_t>(pattern.slot_shift[k] + static_cast<std::ptrdiff_t>(c0));
-              const std::size_t j = static_cast<std::size_t>(pattern.partner_shift[k] +
-                                                             static_cast<std::ptrdiff_t>(c0));
-              if (pattern.partner_shift[k] > 0)
-                add_bond_forces<true>(count, &p.pressure[c0], &p.pressure[j], s, fx, fy, torque);
-              else
-                add_bond_forces<false>(count, &p.pressure[c0], &p.pressure[j], s, fx, fy, torque);
-            }
-            for (std::size_t m = 0; m < count; ++m) {
-              p.fx[c0 + m] = fx[m];
-              p.fy[c0 + m] = fy[m];
-              p.torque[c0 + m] = 0.5 * torque[m];
-            }
+        [&](std::size_t count, std::size_t m, std::size_t j, std::size_t s, bool owner) {
+          with_owner(owner, [&](auto is_owner) {
+            add_bond_forces<is_owner()>(count, &p.pressure[m], &p.pressure[j], s, fx, fy, torque);
+          });
+        },
+        [&](std::size_t m, std::size_t count) {
+          for (std::size_t k = 0; k < count; ++k) {
+            p.fx[m + k] = fx[k];
+            p.fy[m + k] = fy[k];
+            p.torque[m + k] = 0.5 * torque[k];
+            fx[k] = fy[k] = torque[k] = 0.0;
           }
         },
-        [&](std::size_t begin, std::size_t end) {
-          for (std::size_t i = begin; i < end; ++i) {
-            double fx = 0.0, fy = 0.0, torque = 0.0;
-            for (std::uint32_t b = row_begin(i); b < row_begin(i + 1); ++b) {
-              const std::size_t j = neighbor_[b], s = slots_.entry_slot[b];
-              const double pi = p.pressure[i], pj = p.pressure[j];
-              if (j > i)
-                add_bond_force<true>(fx, fy, torque, pi, pj, slot_[kSpringCoef][s],
-                                     slot_[kPressureCoef][s], slot_[kRx][s], slot_[kRy][s],
-                                     slot_[kUx][s], slot_[kUy][s], slot_[kInvLen][s],
-                                     extension_at(s));
-              else
-                add_bond_force<false>(fx, fy, torque, pi, pj, slot_[kSpringCoef][s],
-                                      slot_[kPressureCoef][s], slot_[kRx][s], slot_[kRy][s],
-                                      slot_[kUx][s], slot_[kUy][s], slot_[kInvLen][s],
-                                      extension_at(s));
-            }
-            p.fx[i] = fx;
-            p.fy[i] = fy;
-            p.torque[i] = 0.5 * torque;
+        [&](std::size_t i) {
+          double fxi = 0.0, fyi = 0.0, ti = 0.0;
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const std::size_t j = bonds.neighbor[b], s = slots_.entry_slot[b];
+            with_owner(j > i, [&](auto is_owner) {
+              add_bond_force<is_owner()>(fxi, fyi, ti, p.pressure[i], p.pressure[j],
+                                         slot_[kSpringCoef][s], slot_[kPressureCoef][s],
+                                         slot_[kRx][s], slot_[kRy][s], slot_[kUx][s], slot_[kUy][s],
+                                         slot_[kInvLen][s], extension_at(s));
+            });
           }
+          p.fx[i] = fxi;
+          p.fy[i] = fyi;
+          p.torque[i] = 0.5 * ti;
         });
   }
 
   // Strain energy of particle i (MODEL.md section 4b): its share of
   // sum over bonds (each once) of 1/2 k_ij |u_ij|^2, plus 1/2 lambda_i V eps_i^2.
-  // Needs the strain pass at the current state.
+  // Reads the slots: needs the strain pass at the current state.
   double particle_strain_energy(const ParticleStore& p, const BondTable& bonds,
                                 std::size_t i) const {
     double bond_energy = 0.0;
-    for_each_bond(p, bonds, i, [&](std::uint32_t b, std::size_t, const auto& v, double) {
-      bond_energy += spring_coef_[b] * (v.ux * v.ux + v.uy * v.uy);
-    });
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t s = slots_.entry_slot[b];
+      bond_energy +=
+          slot_[kSpringCoef][s] * (slot_[kUx][s] * slot_[kUx][s] + slot_[kUy][s] * slot_[kUy][s]);
+    }
     // Each bond is seen from both ends: a quarter of k |u|^2 per end.
     return 0.25 * bond_energy + 0.5 * p.lambda[i] * volume_ * p.strain[i] * p.strain[i];
   }
 
   // A bond turned inside out: r_ij . R(theta_ij) r0_ij <= 0. Reports the bond
-  // with the smallest cosine between r_ij and R(theta_ij) r0_ij.
+  // with the smallest cosine between r_ij and R(theta_ij) r0_ij (the same
+  // from both ends). Reads the slots: needs the strain pass at the current
+  // state.
   IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds,
                                   const IntegrityLimits&) const {
     std::vector<double> worst(p.size());
@@ -174,16 +187,17 @@ class PaperModelT {
     parallel_for(0, p.size(), [&](std::size_t i) {
       double lowest = 1.0;
       std::size_t at = i;
-      for_each_bond(
-          p, bonds, i, [&](std::uint32_t b, std::size_t j, const auto& v, double inv_len) {
-            const double ax = v.rx - v.ux, ay = v.ry - v.uy;  // R(theta_ij) r0_ij
-            const double cosine =
-                (v.rx * ax + v.ry * ay) * inv_len / std::hypot(bonds.r0x[b], bonds.r0y[b]);
-            if (cosine < lowest) {
-              lowest = cosine;
-              at = j;
-            }
-          });
+      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+        const std::size_t s = slots_.entry_slot[b];
+        const double rx = slot_[kRx][s], ry = slot_[kRy][s];
+        const double ax = rx - slot_[kUx][s], ay = ry - slot_[kUy][s];  // R(theta_ij) r0_ij
+        const double cosine =
+            (rx * ax + ry * ay) * slot_[kInvLen][s] / std::hypot(slot_[kR0x][s], slot_[kR0y][s]);
+        if (cosine < lowest) {
+          lowest = cosine;
+          at = bonds.neighbor[b];
+        }
+      }
       worst[i] = lowest;
       partner[i] = at;
     });
@@ -197,23 +211,12 @@ class PaperModelT {
     return r;
   }
 
-  // (d / n0) w0_ij / |r0_ij| and k_ij = V (d / n0) 4 mu_ij w0_ij / |r0_ij|^2 (N/m) per bond entry.
-  const std::vector<double>& strain_coefficients() const { return strain_coef_; }
-  const std::vector<double>& spring_coefficients() const { return spring_coef_; }
-
  private:
-  static constexpr std::size_t kChunk = 256;  // particles per gather chunk (accumulators in L1)
-
-  std::uint32_t row_begin(std::size_t i) const { return row_offsets_[i]; }
-
   // Pass 1a for the bonds owned by `owners`: the dense directions in unit
   // stride, the few extra bonds one by one, with the same arithmetic.
   // Bonds between two walls are skipped: walls never move or turn (half
-  // angles exactly 1 and 0), so their u_ij is exactly 0 and their strain
-  // term a zero, which leaves every sum it would join unchanged (a sum that
-  // starts at +0 only gains ±0 as +0 + ±0 = +0, and x + ±0 = x otherwise);
-  // their slots keep the zeros they were made with, and no force pass reads
-  // them (walls are not moving).
+  // angles exactly 1 and 0), so their slots keep what the constructor put
+  // there, the bits this pass would compute.
   void compute_bond_slots(const ParticleStore& p, Range owners) {
     for_each_owned_slot(
         slots_, owners, p.walls.end,
@@ -226,16 +229,9 @@ class PaperModelT {
                           EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
         },
         [&](std::size_t s, std::size_t i, std::size_t j) {
-          const Kinematics k =
-              kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
-                         p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]);
-          slot_[kRx][s] = k.rx;
-          slot_[kRy][s] = k.ry;
-          slot_[kUx][s] = k.ux;
-          slot_[kUy][s] = k.uy;
-          slot_[kInvLen][s] = k.inv_len;
-          slot_[kStrainTerm][s] = slot_[kStrainCoef][s] * k.extension;
-          if constexpr (EnergyConsistent) slot_[kExtension][s] = k.extension;
+          store_kinematics(
+              s, kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
+                            p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]));
         });
   }
 
@@ -250,6 +246,16 @@ class PaperModelT {
     const auto v = bond_math::bond_vectors(xi, yi, xj, yj, rot, r0x, r0y);
     const double il = 1.0 / std::sqrt(v.rx * v.rx + v.ry * v.ry);
     return {v.rx, v.ry, v.ux, v.uy, il, bond_math::normal_extension(v, il)};
+  }
+
+  void store_kinematics(std::size_t s, const Kinematics& k) {
+    slot_[kRx][s] = k.rx;
+    slot_[kRy][s] = k.ry;
+    slot_[kUx][s] = k.ux;
+    slot_[kUy][s] = k.uy;
+    slot_[kInvLen][s] = k.inv_len;
+    slot_[kStrainTerm][s] = slot_[kStrainCoef][s] * k.extension;
+    if constexpr (EnergyConsistent) slot_[kExtension][s] = k.extension;
   }
 
   // kinematics() for `count` bonds (i + m, j + m) into slots slot + m. Unit
@@ -278,32 +284,30 @@ class PaperModelT {
   }
 
   // Pass 1b: eps_i = sum of its bonds' strain terms in CSR order.
-  void gather_strain(ParticleStore& p, Range block) const {
+  void gather_strain(ParticleStore& p, const BondTable& bonds, Range block) const {
     const double* term = slot_[kStrainTerm];
-    for_each_run(
+    double eps[kGatherChunk] = {};
+    const auto store = [&](std::size_t i, double e) {
+      p.strain[i] = e;
+      p.pressure[i] = -p.lambda[i] * e;
+    };
+    gather_rows(
         slots_, block,
-        [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
-          for (std::size_t c0 = begin; c0 < end; c0 += kChunk) {
-            const std::size_t count = std::min(kChunk, end - c0);
-            double eps[kChunk] = {};
-            for (const std::ptrdiff_t shift : pattern.slot_shift) {
-              const double* __restrict t = term + (shift + static_cast<std::ptrdiff_t>(c0));
-              for (std::size_t m = 0; m < count; ++m) eps[m] += t[m];
-            }
-            for (std::size_t m = 0; m < count; ++m) {
-              p.strain[c0 + m] = eps[m];
-              p.pressure[c0 + m] = -p.lambda[c0 + m] * eps[m];
-            }
+        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool) {
+          const double* __restrict t = term + s;
+          for (std::size_t m = 0; m < count; ++m) eps[m] += t[m];
+        },
+        [&](std::size_t m, std::size_t count) {
+          for (std::size_t k = 0; k < count; ++k) {
+            store(m + k, eps[k]);
+            eps[k] = 0.0;
           }
         },
-        [&](std::size_t begin, std::size_t end) {
-          for (std::size_t i = begin; i < end; ++i) {
-            double eps = 0.0;
-            for (std::uint32_t b = row_begin(i); b < row_begin(i + 1); ++b)
-              eps += term[slots_.entry_slot[b]];
-            p.strain[i] = eps;
-            p.pressure[i] = -p.lambda[i] * eps;
-          }
+        [&](std::size_t i) {
+          double e = 0.0;
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
+            e += term[slots_.entry_slot[b]];
+          store(i, e);
         });
   }
 
@@ -343,10 +347,20 @@ class PaperModelT {
   template <bool Owner>
   void add_bond_forces(std::size_t count, const double* pi, const double* pj, std::size_t slot,
                        double* fx, double* fy, double* torque) const {
-    bond_forces<Owner>(count, pi, pj, &slot_[kSpringCoef][slot], &slot_[kPressureCoef][slot],
-                       &slot_[kRx][slot], &slot_[kRy][slot], &slot_[kUx][slot], &slot_[kUy][slot],
-                       &slot_[kInvLen][slot], EnergyConsistent ? &slot_[kExtension][slot] : nullptr,
+    bond_forces<Owner>(count, pi, pj, slot_[kSpringCoef] + slot, slot_[kPressureCoef] + slot,
+                       slot_[kRx] + slot, slot_[kRy] + slot, slot_[kUx] + slot, slot_[kUy] + slot,
+                       slot_[kInvLen] + slot, EnergyConsistent ? slot_[kExtension] + slot : nullptr,
                        fx, fy, torque);
+  }
+
+  // Calls f(std::true_type) or f(std::false_type): the owner's or the other
+  // end's instance of a kernel, chosen once per call, inlined.
+  template <class F>
+  static void with_owner(bool owner, F&& f) {
+    if (owner)
+      f(std::true_type{});
+    else
+      f(std::false_type{});
   }
 
   template <bool Owner>
@@ -364,8 +378,6 @@ class PaperModelT {
 
   double volume_ = 0;
   BondSlots slots_;
-  std::vector<std::uint32_t> row_offsets_, neighbor_;  // the bond table's rows
-  std::vector<double> strain_coef_, spring_coef_;      // per entry
   // Per slot: constants, then pass 1's kinematics (extension: the
   // energy-consistent variant only).
   enum Field : std::size_t {

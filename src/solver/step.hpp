@@ -99,7 +99,7 @@ void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std
     // one barrier less per step.
     TeamPhase t(timers, Phase::forces);
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      model.compute_forces_block(p, {b, e});
+      model.compute_forces_block(p, s.bonds, {b, e});
       integrate_block<rot>(s, dt, {b, e}, kicks);
     });
   }
