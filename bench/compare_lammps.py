@@ -111,10 +111,10 @@ def fixed_threads_flag(exe):
     return ["--fixed-threads"] if "--fixed-threads" in run([exe, "run", "--help"]).stdout else []
 
 
-def run_mpsolid(exe, folder, l0, steps, threads, model):
+def run_mpsolid(exe, folder, l0, steps, threads, model, fixed):
     end = steps * DT
     shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
-    run([exe, "run", CASE, "--out", folder, "--threads", threads, *fixed_threads_flag(exe),
+    run([exe, "run", CASE, "--out", folder, "--threads", threads, *fixed,
          "--set", f"l0={l0!r}",
          "--set", f"model={model}",
          "--set", f"time.end={end!r}",
@@ -163,6 +163,7 @@ def main():
         fail(f"no mpsolid executable at {args.mpsolid}: build it with "
              "`cmake --preset release && cmake --build --preset release`")
     ensure_lammps(args.install_lammps)
+    fixed = fixed_threads_flag(args.mpsolid)
     lmp_version, openmp = lammps_info()
     parallel = "OpenMP (-sf omp -pk omp N)" if openmp else "MPI ranks (mpirun -np N)"
 
@@ -197,7 +198,7 @@ def main():
                         folder = (runs_dir /
                                   f"mpsolid_{code}_l0_{size['l0'] * 1e3:g}mm_t{threads}")
                         r = run_mpsolid(args.mpsolid, folder, size["l0"], size["steps"], threads,
-                                        code)
+                                        code, fixed)
                     if r["particles"] != size["info"]["atoms"]:
                         fail(f"{code} ran {r['particles']} particles, expected "
                              f"{size['info']['atoms']}")

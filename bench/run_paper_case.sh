@@ -32,8 +32,7 @@ extra=()
 for t in "${threads[@]}"; do
   echo "run_paper_case: cases/shock_rod.toml at $t thread(s) -> $out/t$t" >&2
   rc=0
-  rm -rf "$out/t$t"  # a fresh run (works with builds older than --force too)
-  "$exe" run cases/shock_rod.toml --out "$out/t$t" --threads "$t" --fixed-threads "${extra[@]}" || rc=$?
+  "$exe" run cases/shock_rod.toml --out "$out/t$t" --threads "$t" --fixed-threads --force "${extra[@]}" || rc=$?
   if [ "$rc" -ne 0 ]; then
     echo "run_paper_case: mpsolid exited with $rc at $t thread(s) (see $out/t$t/run.json)" >&2
     exit 1

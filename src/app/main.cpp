@@ -93,26 +93,20 @@ int main(int argc, char** argv) {
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
   try {
     install_stop_handlers();
-    if (resume->parsed()) {
-      RunOptions options;
-      options.out_dir = resume_dir;
-      options.threads = chosen_threads(threads);
-      options.adaptive_threads = !fixed_threads;
-      options.progress = stderr_is_terminal();
-      options.command_line = command_line;
-      options.overrides = overrides;
-      return resume_run(overrides, options);
-    }
-    const CaseSpec spec = load_case(case_path, overrides);
     RunOptions options;
-    options.out_dir =
-        out_dir.empty() ? default_out_dir(spec.name, overrides) : std::filesystem::path(out_dir);
-    options.force = force;
-    options.overrides = overrides;
     options.threads = chosen_threads(threads);
     options.adaptive_threads = !fixed_threads;
     options.progress = stderr_is_terminal();
     options.command_line = command_line;
+    options.overrides = overrides;
+    if (resume->parsed()) {
+      options.out_dir = resume_dir;
+      return resume_run(overrides, options);
+    }
+    const CaseSpec spec = load_case(case_path, overrides);
+    options.out_dir =
+        out_dir.empty() ? default_out_dir(spec.name, overrides) : std::filesystem::path(out_dir);
+    options.force = force;
     return run_case(spec, options);
   } catch (const InputError& e) {
     fmt::print(stderr, "mpsolid: error: {}\n", e.what());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <limits>
+#include <new>
 #include <optional>
 
 #include "src/app/memory_check.hpp"
@@ -299,6 +300,8 @@ int with_failed_writes_explained(const std::filesystem::path& dir, Body&& body) 
     return body();
   } catch (const InputError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // main says "out of memory"; reading the checkpoint now would need more
   } catch (const std::exception& e) {
     throw std::runtime_error(abandon_failed_run(dir, e.what()));
   }

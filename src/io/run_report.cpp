@@ -38,37 +38,37 @@ double rate(const RunFacts& facts) {
   return facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0.0;
 }
 
-Json team_sizes_json(const RunFacts& facts) {
+// Summed over the threads: time spent at the step's barriers waiting for the
+// slowest (an imbalance, or a busy machine), its share of threads x wall
+// time, and the wall seconds stepped at each team size (fewer than
+// `threads` where waiting on a busy machine made them slower).
+Json thread_facts_json(const RunFacts& facts) {
   Json sizes = Json::object();
   for (const auto& [size, seconds] : facts.team_size_seconds) sizes[std::to_string(size)] = seconds;
-  return sizes;
-}
-
-// The threads' time waiting at barriers, and its share of threads x wall time.
-double wait_share(const RunFacts& facts) {
   const double capacity = facts.wall_seconds * facts.threads;
-  return capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0;
+  return {{"thread_wait_seconds", facts.thread_wait_seconds},
+          {"thread_wait_share", capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0},
+          {"team_size_seconds", sizes},
+          {"team_size_changes", facts.team_size_changes}};
 }
 }  // namespace
 
 Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
-  return {{"command_line", facts.command_line},
-          {"outcome", outcome_name(facts.outcome)},
-          {"threads", facts.threads},
-          {"start_step", facts.start_step},
-          {"final_step", in.state.step},
-          {"steps", facts.steps},
-          {"wall_seconds", facts.wall_seconds},
-          {"steps_per_second", rate(facts)},
-          {"frames", facts.frames},
-          {"bytes_written", facts.bytes_written},
-          {"checkpoints", facts.checkpoints},
-          {"checkpoint_bytes", facts.checkpoint_bytes},
-          {"phase_seconds", phases_json(in.timers, facts)},
-          {"thread_wait_seconds", facts.thread_wait_seconds},
-          {"thread_wait_share", wait_share(facts)},
-          {"team_size_seconds", team_sizes_json(facts)},
-          {"team_size_changes", facts.team_size_changes}};
+  Json segment = {{"command_line", facts.command_line},
+                  {"outcome", outcome_name(facts.outcome)},
+                  {"threads", facts.threads},
+                  {"start_step", facts.start_step},
+                  {"final_step", in.state.step},
+                  {"steps", facts.steps},
+                  {"wall_seconds", facts.wall_seconds},
+                  {"steps_per_second", rate(facts)},
+                  {"frames", facts.frames},
+                  {"bytes_written", facts.bytes_written},
+                  {"checkpoints", facts.checkpoints},
+                  {"checkpoint_bytes", facts.checkpoint_bytes},
+                  {"phase_seconds", phases_json(in.timers, facts)}};
+  segment.update(thread_facts_json(facts));
+  return segment;
 }
 
 std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
@@ -104,16 +104,9 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                  {"wall_seconds", facts.wall_seconds},
                  {"steps_per_second", steps_per_second},
                  {"particle_steps_per_second", steps_per_second * static_cast<double>(particles)},
-                 {"phase_seconds", phases_json(in.timers, facts)},
-                 // Summed over the threads: time spent at the step's barriers
-                 // waiting for the slowest (an imbalance, or a busy machine).
-                 {"thread_wait_seconds", facts.thread_wait_seconds},
-                 {"thread_wait_share", wait_share(facts)},
-                 // Seconds stepped at each team size: fewer than `threads`
-                 // where waiting on a busy machine made them slower.
-                 {"team_size_seconds", team_sizes_json(facts)},
-                 {"team_size_changes", facts.team_size_changes},
-                 {"segments", segments}};
+                 {"phase_seconds", phases_json(in.timers, facts)}};
+  report.update(thread_facts_json(facts));
+  report["segments"] = segments;
   // The estimate behind time.dt = "auto", if it was used.
   if (const StableStepEstimate& e = in.stable_step; e.iterations > 0)
     report["stable_step"] = {{"safety", in.spec.dt_safety},
