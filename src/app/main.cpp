@@ -1,6 +1,7 @@
 // mpsolid: the command line.
 //   mpsolid run CASE [--out DIR] [--threads N] [--set KEY=VALUE]...
 //   mpsolid resume DIR [--threads N] [--set time.end=VALUE]...
+//   mpsolid study CASE --vary KEY=V1,V2,... [...]   (python/mpsolid/study.py)
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -11,6 +12,7 @@
 #include "src/app/progress.hpp"
 #include "src/app/run.hpp"
 #include "src/app/signals.hpp"
+#include "src/app/study_launcher.hpp"
 #include "src/app/thread_choice.hpp"
 #include "src/core/parallel.hpp"
 #include "src/solver/case_loader.hpp"
@@ -78,6 +80,13 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false)
       ->type_name("KEY=VALUE");
 
+  CLI::App* study = app.add_subcommand(
+      "study",
+      "run a grid of a case's runs, one folder each, then study.csv and study.png (mpsolid study "
+      "--help: every option)");
+  study->prefix_command();  // every argument goes to the study, --help included
+  study->set_help_flag();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -88,6 +97,8 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitBadInput;
   }
+
+  if (study->parsed()) return launch_study(study->remaining());
 
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
