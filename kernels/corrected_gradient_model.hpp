@@ -20,18 +20,29 @@
 // to O(dt). MODEL.md's literal form (F held fixed) is hourglass_form =
 // "frozen"; it loses about 0.5 % of the external work on the 11.2 kN rod.
 //
+// Each bond once (kernels/bond_slots.hpp): after pass 1, the bond's owner
+// computes its hourglass gap g_ij and the four terms h g (x) r0 of Q into its
+// slot; after pass 1b, its stress term wl (S_i A_i^-1 + S_j A_j^-1) r0 and
+// hourglass force h g. Under i <-> j, g and r0 change sign bit for bit, so
+// the Q terms are the same from both ends and the force terms are negated:
+// each particle gathers its slots in CSR order and gets the bits it computed
+// for itself before. The force pass then reads no position: a block's forces
+// and its integration run with no barrier between.
+//
 // A Law (kernels/finite_strain_model.hpp, kernels/linear_elastic_model.hpp)
 // supplies: name (also its case section), rotation_invariant, and
 //   piola(f, J, lambda, mu, P, strain, pressure): P(F) and the outputs;
 //   energy_density(f, J, lambda, mu): W(F).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "kernels/bond_math.hpp"
+#include "kernels/bond_slots.hpp"
 #include "kernels/hourglass_options.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
@@ -62,16 +73,16 @@ class CorrectedGradientModel {
   static constexpr const char* name = Law::name;
   static constexpr bool uses_rotation = false;
   static constexpr bool rotation_invariant = Law::rotation_invariant;
-  // The hourglass term reads positions: the force pass ends with a barrier
-  // before the integration moves them.
-  static constexpr bool forces_read_positions = true;
+  // The force pass reads only the slots (the strain pass computed the
+  // hourglass gaps from the positions): forces and integration share a loop.
+  static constexpr bool forces_read_positions = false;
   static constexpr const char* options_section = Law::name;
   static std::vector<OptionSpec> options() { return hourglass_option_table(); }
 
   // Throws InputError if a particle's neighbourhood cannot define A_i^-1.
   CorrectedGradientModel(const ParticleStore& p, const BondTable& bonds,
                          const OptionValues& options)
-      : volume_(bonds.geometry.volume) {
+      : volume_(bonds.geometry.volume), slots_(make_bond_slots(bonds)) {
     const HourglassSettings hourglass = hourglass_settings(options);
     consistent_hourglass_ = hourglass.consistent && hourglass.alpha > 0;
     const std::size_t n = p.size();
@@ -80,8 +91,8 @@ class CorrectedGradientModel {
     def_grad_.assign(4 * n, 0.0);
     stress_a_.assign(4 * n, 0.0);
     jacobian_.assign(n, 1.0);
-    wl_.resize(bonds.entry_count());
-    hourglass_.resize(bonds.entry_count());
+    std::vector<double> wl_of(bonds.entry_count());
+    std::vector<double> penalty(bonds.entry_count());
     for (std::size_t i = 0; i < n; ++i) {
       double a[4] = {0, 0, 0, 0};
       for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -95,8 +106,8 @@ class CorrectedGradientModel {
         a[3] += wl * r0y * r0y;
         const double e_ij =
             0.5 * (youngs_modulus(p.lambda[i], p.mu[i]) + youngs_modulus(p.lambda[j], p.mu[j]));
-        wl_[b] = wl;
-        hourglass_[b] = hourglass.alpha * e_ij * volume_ * (2.0 / n0) * wl;
+        wl_of[b] = wl;
+        penalty[b] = hourglass.alpha * e_ij * volume_ * (2.0 / n0) * wl;
       }
       const double d = tensor2::det(a);
       // An interior particle has A = (n0 / d) I; neighbours on one line give det A = 0.
@@ -111,70 +122,86 @@ class CorrectedGradientModel {
       inv[2] = -a[2] / d;
       inv[3] = a[0] / d;
     }
+    // Per slot: the owner's entry's constants (the same from both ends, but
+    // r0, which the other end sees negated).
+    slot_ = SlotArrays(kFields, slots_.slot_count());
+    const auto fill = [&](Field f, const std::vector<double>& per_entry) {
+      const std::vector<double> v = slot_values(slots_, bonds, per_entry);
+      std::copy(v.begin(), v.end(), slot_[f]);
+    };
+    fill(kR0x, bonds.r0x);
+    fill(kR0y, bonds.r0y);
+    fill(kWl, wl_of);
+    fill(kHourglass, penalty);
   }
 
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
-    parallel_for(range.begin, range.end, [&](std::size_t i) {
-      const double xi = p.x[i], yi = p.y[i];
-      double g[4] = {0, 0, 0, 0};  // sum_j wl r_ij (x) r0_ij
-      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const std::size_t j = bonds.neighbor[b];
-        const double w = wl_[b];
-        const double rx = p.x[j] - xi, ry = p.y[j] - yi;
-        g[0] += w * rx * bonds.r0x[b];
-        g[1] += w * rx * bonds.r0y[b];
-        g[2] += w * ry * bonds.r0x[b];
-        g[3] += w * ry * bonds.r0y[b];
-      }
-      const double* ai = &a_inv_[4 * i];
-      double* f = &def_grad_[4 * i];
-      tensor2::times_a_inv(g, ai, f);
-      const double jac = tensor2::det(f);
-      double stress[4];
-      Law::piola(f, jac, p.lambda[i], p.mu[i], stress, p.strain[i], p.pressure[i]);
-      for (double& s : stress) s *= volume_;  // S = V P
-      tensor2::times_a_inv(stress, ai, &stress_a_[4 * i]);
-      jacobian_[i] = jac;
+    // Every bond's terms of G (all owners, whatever `range` is), then F.
+    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
+      compute_gradient_slots(p, {b, e});
     });
-    if (!consistent_hourglass_) return;
-    parallel_for(range.begin, range.end, [&](std::size_t i) {
-      double q[4] = {0, 0, 0, 0};
-      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const auto g = hourglass_gap(p, bonds, i, b);
-        const double h = -0.5 * hourglass_[b];
-        q[0] += h * g[0] * bonds.r0x[b];
-        q[1] += h * g[0] * bonds.r0y[b];
-        q[2] += h * g[1] * bonds.r0x[b];
-        q[3] += h * g[1] * bonds.r0y[b];
-      }
-      double qa[4];
-      tensor2::times_a_inv(q, &a_inv_[4 * i], qa);
-      for (int k = 0; k < 4; ++k) stress_a_[4 * i + static_cast<std::size_t>(k)] += qa[k];
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      gather_deformation_gradient(p, bonds, {b, e});
+    });
+    // Every bond's gap and Q terms (all owners, whatever `range` is).
+    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
+      compute_gap_slots(p, {b, e});
+    });
+    if (consistent_hourglass_)
+      parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+        gather_hourglass_stress(bonds, {b, e});
+      });
+    // The force terms of the bonds that reach a moving particle.
+    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
+      compute_force_slots(p, {b, e});
     });
   }
 
-  // Pass 2: the force; no torque.
+  // Pass 2: the force; no torque (needs pass 1 at the current state).
   void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
-    parallel_for(range.begin, range.end, [&](std::size_t i) {
-      const double* pai = &stress_a_[4 * i];
-      double fx = 0.0, fy = 0.0;
-      for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const std::size_t j = bonds.neighbor[b];
-        const double* paj = &stress_a_[4 * j];
-        const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
-        const double wl = wl_[b];
-        fx += wl * ((pai[0] + paj[0]) * r0x + (pai[1] + paj[1]) * r0y);
-        fy += wl * ((pai[2] + paj[2]) * r0x + (pai[3] + paj[3]) * r0y);
-        // Hourglass: the bond's deviation from the mean affine map of its ends.
-        const auto g = hourglass_gap(p, bonds, i, b);
-        fx += hourglass_[b] * g[0];
-        fy += hourglass_[b] * g[1];
-      }
-      p.fx[i] = fx;
-      p.fy[i] = fy;
-      p.torque[i] = 0.0;
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      compute_forces_block(p, bonds, {b, e});
     });
+  }
+
+  // Pass 2 on one block, serially (the step fuses it with the integration):
+  // per entry, the stress term, then the hourglass force, as before.
+  void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
+    double fx[kGatherChunk] = {}, fy[kGatherChunk] = {};
+    gather_rows(
+        slots_, block,
+        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool owner) {
+          const double *sx = slot_[kTerm0] + s, *sy = slot_[kTerm1] + s;
+          const double *hx = slot_[kTerm2] + s, *hy = slot_[kTerm3] + s;
+          if (owner)
+            add_forces<true>(count, sx, sy, hx, hy, fx, fy);
+          else
+            add_forces<false>(count, sx, sy, hx, hy, fx, fy);
+        },
+        [&](std::size_t m, std::size_t count) {
+          for (std::size_t k = 0; k < count; ++k) {
+            p.fx[m + k] = fx[k];
+            p.fy[m + k] = fy[k];
+            p.torque[m + k] = 0.0;
+            fx[k] = fy[k] = 0.0;
+          }
+        },
+        [&](std::size_t i) {
+          double fxi = 0.0, fyi = 0.0;
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const std::size_t s = slots_.entry_slot[b];
+            if (bonds.neighbor[b] > i)
+              add_forces<true>(1, &slot_[kTerm0][s], &slot_[kTerm1][s], &slot_[kTerm2][s],
+                               &slot_[kTerm3][s], &fxi, &fyi);
+            else
+              add_forces<false>(1, &slot_[kTerm0][s], &slot_[kTerm1][s], &slot_[kTerm2][s],
+                                &slot_[kTerm3][s], &fxi, &fyi);
+          }
+          p.fx[i] = fxi;
+          p.fy[i] = fyi;
+          p.torque[i] = 0.0;
+        });
   }
 
   // V W(F_i) + 1/4 sum_j h_ij |g_ij|^2 (needs a current strain pass).
@@ -184,8 +211,9 @@ class CorrectedGradientModel {
         Law::energy_density(&def_grad_[4 * i], jacobian_[i], p.lambda[i], p.mu[i]);
     double hourglass = 0.0;
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const auto g = hourglass_gap(p, bonds, i, b);
-      hourglass += hourglass_[b] * (g[0] * g[0] + g[1] * g[1]);
+      const std::size_t s = slots_.entry_slot[b];  // the other end's g is -g: the same square
+      const double gx = slot_[kGapX][s], gy = slot_[kGapY][s];
+      hourglass += slot_[kHourglass][s] * (gx * gx + gy * gy);
     }
     // Each bond is seen from both ends: a quarter of h |g|^2 per end.
     return volume_ * density + 0.25 * hourglass;
@@ -223,25 +251,195 @@ class CorrectedGradientModel {
     return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
   }
 
-  // g_ij = r_ij - (F_i + F_j) r0_ij / 2 for bond entry b of particle i.
-  std::array<double, 2> hourglass_gap(const ParticleStore& p, const BondTable& bonds, std::size_t i,
-                                      std::uint32_t b) const {
-    const std::size_t j = bonds.neighbor[b];
-    const double* fi = &def_grad_[4 * i];
-    const double* fj = &def_grad_[4 * j];
-    const double r0x = bonds.r0x[b], r0y = bonds.r0y[b];
-    return {(p.x[j] - p.x[i]) - 0.5 * ((fi[0] + fj[0]) * r0x + (fi[1] + fj[1]) * r0y),
-            (p.y[j] - p.y[i]) - 0.5 * ((fi[2] + fj[2]) * r0x + (fi[3] + fj[3]) * r0y)};
+  // Each owned bond's terms wl_ij r_ij (x) r0_ij of G, the same from both
+  // ends (r and r0 both change sign).
+  void compute_gradient_slots(const ParticleStore& p, Range owners) {
+    const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
+    const auto terms = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
+      gradient_terms(count, &p.x[i], &p.y[i], &p.x[j], &p.y[j], at(kR0x, s), at(kR0y, s),
+                     at(kWl, s), at(kTerm0, s), at(kTerm1, s), at(kTerm2, s), at(kTerm3, s));
+    };
+    for_each_owned_slot(slots_, owners, 0, terms,
+                        [&](std::size_t s, std::size_t i, std::size_t j) { terms(1, s, i, j); });
+  }
+
+  // Pass 1: G_i = sum of its slots' G terms in CSR order; F_i = G_i A_i^-1,
+  // J_i, the law's stress and S_i A_i^-1.
+  void gather_deformation_gradient(ParticleStore& p, const BondTable& bonds, Range block) {
+    gather_tensor(bonds, block, [&](std::size_t i, const double* g) {
+      const double* ai = &a_inv_[4 * i];
+      double* f = &def_grad_[4 * i];
+      tensor2::times_a_inv(g, ai, f);
+      const double jac = tensor2::det(f);
+      double stress[4];
+      Law::piola(f, jac, p.lambda[i], p.mu[i], stress, p.strain[i], p.pressure[i]);
+      for (double& v : stress) v *= volume_;  // S = V P
+      tensor2::times_a_inv(stress, ai, &stress_a_[4 * i]);
+      jacobian_[i] = jac;
+    });
+  }
+
+  // finish(i, t) with t_i = the sum of particle i's slots' four terms
+  // (kTerm0..3, the same from both ends) in CSR order, for i in `block`.
+  template <class Finish>
+  void gather_tensor(const BondTable& bonds, Range block, Finish&& finish) const {
+    double t[4][kGatherChunk] = {};
+    gather_rows(
+        slots_, block,
+        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool) {
+          for (std::size_t c = 0; c < 4; ++c) {
+            const double* __restrict term = slot_[kTerm0 + c] + s;
+            double* __restrict acc = t[c];
+            for (std::size_t m = 0; m < count; ++m) acc[m] += term[m];
+          }
+        },
+        [&](std::size_t m, std::size_t count) {
+          for (std::size_t k = 0; k < count; ++k) {
+            const double ti[4] = {t[0][k], t[1][k], t[2][k], t[3][k]};
+            finish(m + k, ti);
+            t[0][k] = t[1][k] = t[2][k] = t[3][k] = 0.0;
+          }
+        },
+        [&](std::size_t i) {
+          double ti[4] = {0, 0, 0, 0};
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
+            for (std::size_t c = 0; c < 4; ++c) ti[c] += slot_[kTerm0 + c][slots_.entry_slot[b]];
+          finish(i, ti);
+        });
+  }
+
+  static void gradient_terms(std::size_t count, const double* __restrict xi,
+                             const double* __restrict yi, const double* __restrict xj,
+                             const double* __restrict yj, const double* __restrict r0x,
+                             const double* __restrict r0y, const double* __restrict wl,
+                             double* __restrict t0, double* __restrict t1, double* __restrict t2,
+                             double* __restrict t3) {
+    for (std::size_t m = 0; m < count; ++m) {
+      const double rx = xj[m] - xi[m], ry = yj[m] - yi[m];
+      t0[m] = wl[m] * rx * r0x[m];
+      t1[m] = wl[m] * rx * r0y[m];
+      t2[m] = wl[m] * ry * r0x[m];
+      t3[m] = wl[m] * ry * r0y[m];
+    }
+  }
+
+  // Each owned bond's hourglass gap g_ij = r_ij - (F_i + F_j) r0_ij / 2 and
+  // its Q terms (-1/2 h_ij) g_ij (x) r0_ij, the same from both ends.
+  void compute_gap_slots(const ParticleStore& p, Range owners) {
+    const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
+    const auto gaps = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
+      gap_terms(count, &p.x[i], &p.y[i], &p.x[j], &p.y[j], &def_grad_[4 * i], &def_grad_[4 * j],
+                at(kR0x, s), at(kR0y, s), at(kHourglass, s), at(kGapX, s), at(kGapY, s),
+                at(kTerm0, s), at(kTerm1, s), at(kTerm2, s), at(kTerm3, s));
+    };
+    for_each_owned_slot(slots_, owners, 0,
+                        gaps,  // walls' own bonds too: their Q enters their neighbours' force
+                        [&](std::size_t s, std::size_t i, std::size_t j) { gaps(1, s, i, j); });
+  }
+
+  // Each owned bond's stress term wl ((S_i + S_j) A^-1 parts) r0 and
+  // hourglass force h g, seen from the owner. Bonds between two walls are
+  // skipped: no moving particle reads them.
+  void compute_force_slots(const ParticleStore& p, Range owners) {
+    const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
+    const auto terms = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
+      force_terms(count, &stress_a_[4 * i], &stress_a_[4 * j], at(kR0x, s), at(kR0y, s), at(kWl, s),
+                  at(kHourglass, s), at(kGapX, s), at(kGapY, s), at(kTerm0, s), at(kTerm1, s),
+                  at(kTerm2, s), at(kTerm3, s));
+    };
+    for_each_owned_slot(slots_, owners, p.walls.end, terms,
+                        [&](std::size_t s, std::size_t i, std::size_t j) { terms(1, s, i, j); });
+  }
+
+  // Pass 1b: Q_i = sum of its slots' Q terms in CSR order, S_i A_i^-1 += Q_i A_i^-1.
+  void gather_hourglass_stress(const BondTable& bonds, Range block) {
+    gather_tensor(bonds, block, [&](std::size_t i, const double* q) {
+      double qa[4];
+      tensor2::times_a_inv(q, &a_inv_[4 * i], qa);
+      for (std::size_t k = 0; k < 4; ++k) stress_a_[4 * i + k] += qa[k];
+    });
+  }
+
+  // gap slots for `count` bonds (i + m, j + m) into slots s + m; F rows of 4.
+  static void gap_terms(std::size_t count, const double* __restrict xi, const double* __restrict yi,
+                        const double* __restrict xj, const double* __restrict yj,
+                        const double* __restrict fi, const double* __restrict fj,
+                        const double* __restrict r0x, const double* __restrict r0y,
+                        const double* __restrict h, double* __restrict gx, double* __restrict gy,
+                        double* __restrict q0, double* __restrict q1, double* __restrict q2,
+                        double* __restrict q3) {
+    for (std::size_t m = 0; m < count; ++m) {
+      const double* a = fi + 4 * m;
+      const double* b = fj + 4 * m;
+      const double x = (xj[m] - xi[m]) - 0.5 * ((a[0] + b[0]) * r0x[m] + (a[1] + b[1]) * r0y[m]);
+      const double y = (yj[m] - yi[m]) - 0.5 * ((a[2] + b[2]) * r0x[m] + (a[3] + b[3]) * r0y[m]);
+      const double half_h = -0.5 * h[m];
+      gx[m] = x;
+      gy[m] = y;
+      q0[m] = half_h * x * r0x[m];
+      q1[m] = half_h * x * r0y[m];
+      q2[m] = half_h * y * r0x[m];
+      q3[m] = half_h * y * r0y[m];
+    }
+  }
+
+  // force slots for `count` bonds; (S A^-1) rows of 4.
+  static void force_terms(std::size_t count, const double* __restrict pai,
+                          const double* __restrict paj, const double* __restrict r0x,
+                          const double* __restrict r0y, const double* __restrict wl,
+                          const double* __restrict h, const double* __restrict gx,
+                          const double* __restrict gy, double* __restrict sx, double* __restrict sy,
+                          double* __restrict hx, double* __restrict hy) {
+    for (std::size_t m = 0; m < count; ++m) {
+      const double* a = pai + 4 * m;
+      const double* b = paj + 4 * m;
+      sx[m] = wl[m] * ((a[0] + b[0]) * r0x[m] + (a[1] + b[1]) * r0y[m]);
+      sy[m] = wl[m] * ((a[2] + b[2]) * r0x[m] + (a[3] + b[3]) * r0y[m]);
+      hx[m] = h[m] * gx[m];
+      hy[m] = h[m] * gy[m];
+    }
+  }
+
+  // fx += s, then fx += h g (the owner's terms), or both subtracted (the
+  // other end's terms are the owner's negated), for `count` particles.
+  template <bool Owner>
+  static void add_forces(std::size_t count, const double* __restrict sx,
+                         const double* __restrict sy, const double* __restrict hx,
+                         const double* __restrict hy, double* __restrict fx,
+                         double* __restrict fy) {
+    for (std::size_t m = 0; m < count; ++m) {
+      fx[m] = Owner ? fx[m] + sx[m] : fx[m] - sx[m];
+      fy[m] = Owner ? fy[m] + sy[m] : fy[m] - sy[m];
+      fx[m] = Owner ? fx[m] + hx[m] : fx[m] - hx[m];
+      fy[m] = Owner ? fy[m] + hy[m] : fy[m] - hy[m];
+    }
   }
 
   double volume_;
   bool consistent_hourglass_ = false;
-  std::vector<double> a_inv_;      // A_i^-1, 4 per particle
-  std::vector<double> def_grad_;   // F_i, 4 per particle
-  std::vector<double> stress_a_;   // (S_i + Q_i) A_i^-1, 4 per particle
-  std::vector<double> jacobian_;   // J_i
-  std::vector<double> wl_;         // wl_ij = w0_ij / |r0_ij|^2 per bond entry
-  std::vector<double> hourglass_;  // h_ij = alpha E_ij V (2 / n0) wl_ij per bond entry
+  std::vector<double> a_inv_;     // A_i^-1, 4 per particle
+  std::vector<double> def_grad_;  // F_i, 4 per particle
+  std::vector<double> stress_a_;  // (S_i + Q_i) A_i^-1, 4 per particle
+  std::vector<double> jacobian_;  // J_i
+  BondSlots slots_;
+  // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij), the hourglass
+  // gap, and four terms that each pass reuses in turn (few arrays: they
+  // stay in cache on larger lattices): G's, then Q's, then the force's
+  // (stress term x, y, hourglass force x, y).
+  enum Field : std::size_t {
+    kR0x,
+    kR0y,
+    kWl,
+    kHourglass,
+    kGapX,
+    kGapY,
+    kTerm0,
+    kTerm1,
+    kTerm2,
+    kTerm3,
+    kFields
+  };
+  SlotArrays slot_;
 };
 
 }  // namespace mpsolid
