@@ -1,5 +1,6 @@
 #include "python/bindings/toml_value.hpp"
 
+#include <fmt/format.h>
 #include <toml.hpp>
 
 #include "src/case/case_overrides.hpp"
@@ -8,10 +9,27 @@ namespace py = pybind11;
 
 namespace mpsolid::python {
 
+namespace {
+// One line, "..." with TOML's escapes (toml11 would pick """...""" for text
+// with quotes, which is harder to read back in an error message).
+std::string basic_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\')
+      out += {'\\', c};
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
+    else
+      out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
 std::string toml_value_text(py::handle value) {
   // bool before int: True is an int in Python.
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::str>(value)) return toml::format(TomlValue(value.cast<std::string>()));
+  if (py::isinstance<py::str>(value)) return basic_string(value.cast<std::string>());
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
     std::string text = "[";
     for (py::handle item : value) text += (text.size() > 1 ? ", " : "") + toml_value_text(item);
