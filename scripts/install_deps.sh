@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libnanoflann-dev libhdf5-dev libgtest-dev libbenchmark-dev
   libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev clang-format
   python3 python3-h5py python3-matplotlib
+  python3-dev python3-numpy python3-setuptools python3-wheel python3-venv python3-pip pybind11-dev python3-pybind11
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -8,28 +8,16 @@
 #include <exception>
 #include <new>
 
-#include "build_info.hpp"
 #include "src/app/progress.hpp"
 #include "src/app/run.hpp"
 #include "src/app/signals.hpp"
 #include "src/app/study_launcher.hpp"
 #include "src/app/thread_choice.hpp"
+#include "src/app/version.hpp"
 #include "src/core/parallel.hpp"
 #include "src/solver/case_loader.hpp"
 
 namespace {
-std::string version_text() {
-  using namespace mpsolid;
-#ifdef _OPENMP
-  const std::string openmp = fmt::format("OpenMP {} ({} cores)", _OPENMP, available_cores());
-#else
-  const std::string openmp = "no OpenMP";
-#endif
-  return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; MPI: not in this build",
-                     build_info::version, build_info::git_commit, build_info::compiler,
-                     build_info::build_type, build_info::cxx_flags, openmp);
-}
-
 // The thread count, with a warning on stderr when it exceeds the cores.
 int chosen_threads(int requested) {
   using namespace mpsolid;

@@ -1,0 +1,287 @@
+// mpsolid.Simulation: a case set up and stepped from Python, its particle
+// arrays as read-only numpy views of the store (no copies).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "python/bindings/bindings.hpp"
+#include "python/bindings/case_handle.hpp"
+#include "python/bindings/threads.hpp"
+#include "src/core/parallel.hpp"
+#include "src/solver/simulation.hpp"
+
+namespace py = pybind11;
+
+namespace mpsolid::python {
+
+namespace {
+
+// The store's arrays Python sees, by name. Storage order, not id order.
+struct DoubleArray {
+  const char* name;
+  std::vector<double> ParticleStore::*member;
+};
+constexpr DoubleArray kDoubleArrays[] = {{"x", &ParticleStore::x},
+                                         {"y", &ParticleStore::y},
+                                         {"vx", &ParticleStore::vx},
+                                         {"vy", &ParticleStore::vy},
+                                         {"theta", &ParticleStore::theta},
+                                         {"omega", &ParticleStore::omega},
+                                         {"pressure", &ParticleStore::pressure},
+                                         {"strain", &ParticleStore::strain},
+                                         {"fx", &ParticleStore::fx},
+                                         {"fy", &ParticleStore::fy},
+                                         {"torque", &ParticleStore::torque},
+                                         {"x0", &ParticleStore::x0},
+                                         {"y0", &ParticleStore::y0}};
+struct IntArray {
+  const char* name;
+  std::vector<std::int32_t> ParticleStore::*member;
+};
+constexpr IntArray kIntArrays[] = {{"ids", &ParticleStore::id},
+                                   {"bodies", &ParticleStore::body},
+                                   {"materials", &ParticleStore::material}};
+
+// Steps between looks at Python's signals: about 2e6 particle-steps (a
+// tenth of a second on one core), at most 1000. Batches end on multiples of
+// it, so an interrupted advance stops at one.
+std::int64_t batch_steps_for(std::size_t particles) {
+  return std::clamp<std::int64_t>(
+      2'000'000 / static_cast<std::int64_t>(std::max<std::size_t>(1, particles)), 1, 1000);
+}
+
+class SimulationHandle {
+ public:
+  SimulationHandle(const CaseSpec& spec, int threads)
+      : threads_((set_thread_count(threads), threads)),
+        sim_(spec),
+        batch_(batch_steps_for(sim_.particles().size())) {}
+
+  // Runs f on the solver with the GIL released and this Simulation's threads.
+  template <class F>
+  auto with_solver(F&& f) {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(solver_mutex());
+    set_thread_count(threads_);
+    return f();
+  }
+
+  // Steps to `target` in batches with the GIL released, looking at Python's
+  // signals between batches: a KeyboardInterrupt leaves the state at the end
+  // of the last whole batch. The fields (strain, pressure) are fresh after.
+  void advance_to(std::int64_t target) {
+    if (busy_) throw std::runtime_error("this Simulation is already stepping in another thread");
+    busy_ = true;
+    struct Idle {
+      bool& busy;
+      ~Idle() { busy = false; }
+    } idle{busy_};
+    bool interrupted = false;
+    while (sim_.step() < target && !interrupted) {
+      const std::int64_t next = std::min(target, (sim_.step() / batch_ + 1) * batch_);
+      with_solver([&] { sim_.advance(next - sim_.step()); });
+      interrupted = PyErr_CheckSignals() != 0;
+    }
+    with_solver([&] { sim_.refresh_fields(); });
+    if (interrupted) throw py::error_already_set();
+  }
+
+  Simulation& sim() { return sim_; }
+  int threads() const { return threads_; }
+  void set_threads(int threads) { threads_ = threads; }
+  std::int64_t batch() const { return batch_; }
+
+ private:
+  int threads_;
+  Simulation sim_;
+  std::int64_t batch_;
+  bool busy_ = false;  // read and written with the GIL held
+};
+
+// The first step whose time is at or after t.
+std::int64_t first_step_at(const CaseSpec& spec, double t) {
+  const double guess = std::ceil(t / spec.dt);
+  if (!(guess <= kMaxSteps))
+    throw InputError(fmt::format("run_to({}): more than 2^53 steps of dt = {} s", t, spec.dt));
+  auto k = static_cast<std::int64_t>(std::max(0.0, guess));
+  while (k > 0 && spec.time_at(k - 1) >= t) --k;
+  while (spec.time_at(k) < t) ++k;
+  return k;
+}
+
+py::dict diagnostics_dict(const Diagnostics& d) {
+  py::dict out;
+  out["kinetic_energy"] = d.kinetic_energy;
+  out["strain_energy"] = d.strain_energy;
+  out["external_work"] = d.external_work;
+  out["momentum_x"] = d.momentum_x;
+  out["momentum_y"] = d.momentum_y;
+  out["angular_momentum"] = d.angular_momentum;
+  out["max_speed"] = d.max_speed;
+  return out;
+}
+
+// A read-only view of `data`, kept alive by `owner` (the Simulation).
+template <class T>
+py::array view(const py::object& owner, const T* data, std::size_t size) {
+  py::array a(py::dtype::of<T>(), {size}, {sizeof(T)}, data, owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+std::uintptr_t address_of(SimulationHandle& h, const std::string& name) {
+  const ParticleStore& p = h.sim().particles();
+  for (const DoubleArray& a : kDoubleArrays)
+    if (name == a.name) return reinterpret_cast<std::uintptr_t>((p.*a.member).data());
+  for (const IntArray& a : kIntArrays)
+    if (name == a.name) return reinterpret_cast<std::uintptr_t>((p.*a.member).data());
+  if (name == "kinds") return reinterpret_cast<std::uintptr_t>(p.kind.data());
+  throw py::key_error(name);
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  py::class_<SimulationHandle> cls(
+      m, "Simulation",
+      "A case set up and ready to step (no outputs). The particle arrays are read-only numpy "
+      "views of the solver's store, in storage order [wall | elastic | rigid], not id order: "
+      "sort by `ids` for id order.");
+  cls.def(py::init([](const CaseHandle& c, const py::object& threads) {
+            const CaseSpec spec = c.spec();
+            const int n = chosen_threads(threads);
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(solver_mutex());
+            return std::make_unique<SimulationHandle>(spec, n);
+          }),
+          py::arg("case"), py::arg("threads") = py::none(),
+          "Sets the case up (dt chosen for time.dt = \"auto\"). threads=None: OMP_NUM_THREADS "
+          "if set, else every core, as the command line.")
+      .def(
+          "advance",
+          [](SimulationHandle& h, std::int64_t steps) {
+            if (steps < 0) throw py::value_error("advance: steps must be >= 0");
+            if (static_cast<double>(h.sim().step()) + static_cast<double>(steps) > kMaxSteps)
+              throw py::value_error("advance: more than 2^53 steps in all");
+            h.advance_to(h.sim().step() + steps);
+          },
+          py::arg("steps"),
+          "Advances `steps` time steps, the GIL released. Ctrl-C raises KeyboardInterrupt with "
+          "the state at the end of the last whole batch (see batch_steps).")
+      .def(
+          "run_to",
+          [](SimulationHandle& h, double t) {
+            if (!std::isfinite(t)) throw py::value_error("run_to: t must be finite");
+            if (t < h.sim().time())
+              throw py::value_error(fmt::format(
+                  "run_to({}): before the current time {} s (step {}); a Simulation only goes "
+                  "forward",
+                  t, h.sim().time(), h.sim().step()));
+            h.advance_to(first_step_at(h.sim().spec(), t));
+          },
+          py::arg("t"),
+          "Advances to the first step whose time is at or after t (s); t may lie past the "
+          "case's end.")
+      .def_property_readonly("time", [](SimulationHandle& h) { return h.sim().time(); })
+      .def_property_readonly("step", [](SimulationHandle& h) { return h.sim().step(); })
+      .def_property_readonly("dt", [](SimulationHandle& h) { return h.sim().spec().dt; })
+      .def_property_readonly("end_time", [](SimulationHandle& h) { return h.sim().spec().end; })
+      .def_property_readonly("name", [](SimulationHandle& h) { return h.sim().spec().name; })
+      .def_property_readonly("model", [](SimulationHandle& h) { return h.sim().spec().model; })
+      .def_property_readonly("particle_count",
+                             [](SimulationHandle& h) { return h.sim().particles().size(); })
+      .def_property_readonly("batch_steps", &SimulationHandle::batch,
+                             "Steps between looks at Ctrl-C; advance stops on multiples of it.")
+      .def_property(
+          "threads", &SimulationHandle::threads,
+          [](SimulationHandle& h, const py::object& n) {
+            if (n.is_none()) throw py::value_error("threads: give a count from 1 to 4096");
+            h.set_threads(chosen_threads(n));
+          },
+          "OpenMP threads of the next steps (the same bits at any count).")
+      .def_property_readonly(
+          "body_names",
+          [](SimulationHandle& h) {
+            std::vector<std::string> names;
+            for (const BodySpec& b : h.sim().spec().bodies) names.push_back(b.name);
+            return names;
+          },
+          "Body names; `bodies` holds indices into this list.")
+      .def_property_readonly(
+          "ranges",
+          [](SimulationHandle& h) {
+            const ParticleStore& p = h.sim().particles();
+            py::dict r;
+            r["wall"] = py::make_tuple(p.walls.begin, p.walls.end);
+            r["elastic"] = py::make_tuple(p.elastic.begin, p.elastic.end);
+            r["rigid"] = py::make_tuple(p.rigid.begin, p.rigid.end);
+            return r;
+          },
+          "Storage index ranges [begin, end) of each kind.")
+      .def_property_readonly("initial_energy",
+                             [](SimulationHandle& h) { return h.sim().initial_energy(); })
+      .def(
+          "resolved_toml", [](SimulationHandle& h) { return h.sim().spec().resolved_toml; },
+          "The case as run (an automatic dt filled in).")
+      .def(
+          "diagnostics",
+          [](SimulationHandle& h) {
+            return diagnostics_dict(h.with_solver([&] { return h.sim().diagnostics(); }));
+          },
+          "Energies (J per depth), momenta and the largest speed of the current state.")
+      .def(
+          "check_stability",
+          [](SimulationHandle& h) {
+            Diagnostics d;
+            const StabilityVerdict v = h.with_solver([&] { return h.sim().check_stability(&d); });
+            const ParticleStore& p = h.sim().particles();
+            py::dict out;
+            out["ok"] = v.ok;
+            out["criterion"] = v.criterion;
+            out["particle"] = v.particle;
+            out["particle_id"] = v.particle < p.size() ? py::cast(p.id[v.particle]) : py::none();
+            out["neighbor_id"] = v.has_neighbor ? py::cast(p.id[v.neighbor]) : py::none();
+            out["value"] = v.value;
+            out["limit"] = v.limit;
+            out["diagnostics"] = v.ok ? py::object(diagnostics_dict(d)) : py::none();
+            return out;
+          },
+          "The run loop's blow-up checks of the current state: ok, the failed criterion and "
+          "particle (storage index and id), value and limit.")
+      .def("_address", &address_of, py::arg("name"),
+           "The address of the store's array `name` (for the zero-copy test).");
+  for (const DoubleArray& a : kDoubleArrays) {
+    const auto member = a.member;
+    cls.def_property_readonly(a.name, [member](py::object self) {
+      const std::vector<double>& v = self.cast<SimulationHandle&>().sim().particles().*member;
+      return view(self, v.data(), v.size());
+    });
+  }
+  for (const IntArray& a : kIntArrays) {
+    const auto member = a.member;
+    cls.def_property_readonly(a.name, [member](py::object self) {
+      const std::vector<std::int32_t>& v = self.cast<SimulationHandle&>().sim().particles().*member;
+      return view(self, v.data(), v.size());
+    });
+  }
+  cls.def_property_readonly(
+      "kinds",
+      [](py::object self) {
+        const std::vector<Kind>& v = self.cast<SimulationHandle&>().sim().particles().kind;
+        static_assert(sizeof(Kind) == sizeof(std::int8_t));
+        return view(self, reinterpret_cast<const std::int8_t*>(v.data()), v.size());
+      },
+      "Each particle's Kind as its integer (KIND_NAMES gives the names).");
+  py::dict kind_names;
+  for (Kind k : {Kind::wall, Kind::elastic, Kind::rigid})
+    kind_names[py::int_(static_cast<int>(k))] = kind_name(k);
+  m.attr("KIND_NAMES") = kind_names;
+}
+
+}  // namespace mpsolid::python

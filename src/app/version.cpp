@@ -1,0 +1,28 @@
+#include "src/app/version.hpp"
+
+#include <fmt/format.h>
+
+#include "build_info.hpp"
+#include "src/core/parallel.hpp"
+
+namespace mpsolid {
+
+VersionFacts version_facts() {
+  VersionFacts f{build_info::version,    build_info::git_commit, build_info::compiler,
+                 build_info::build_type, build_info::cxx_flags,  "",
+                 available_cores()};
+#ifdef _OPENMP
+  f.openmp = fmt::format("OpenMP {} ({} cores)", _OPENMP, f.cores);
+#else
+  f.openmp = "no OpenMP";
+#endif
+  return f;
+}
+
+std::string version_text() {
+  const VersionFacts f = version_facts();
+  return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; MPI: not in this build",
+                     f.version, f.git_commit, f.compiler, f.build_type, f.cxx_flags, f.openmp);
+}
+
+}  // namespace mpsolid
