@@ -25,6 +25,9 @@ std::string case_repr(const CaseHandle& c) {
 }  // namespace
 
 void bind_case(py::module_& m) {
+  m.def(
+      "toml_value", [](py::handle value) { return toml_value_text(value); }, py::arg("value"),
+      "A Python value as the TOML text `--set` reads (what Case.set applies).");
   py::class_<CaseHandle>(m, "Case",
                          "A case: a TOML case file (or text) with --set style overrides.")
       .def_static(
@@ -43,6 +46,15 @@ void bind_case(py::module_& m) {
           "Overrides a case key as `--set key=value` does (same checks and messages); returns "
           "the case. Raises InputError and leaves the case unchanged when the result is not "
           "valid.")
+      .def(
+          "set_text",
+          [](py::object self, const std::string& key, const std::string& text) {
+            self.cast<CaseHandle&>().set(key, text);
+            return self;
+          },
+          py::arg("key"), py::arg("text"),
+          "Like set, with the value as the command line gives it (TOML text, a bare word a "
+          "string): `mpsolid study` checks its --vary and --set values with it.")
       .def("copy", [](const CaseHandle& c) { return c; })
       .def("__copy__", [](const CaseHandle& c) { return c; })
       .def("__deepcopy__", [](const CaseHandle& c, py::handle) { return c; })

@@ -16,13 +16,14 @@ from ._mpsolid import (
     __version__,
     resume,
     run,
+    toml_value,
     version,
 )
 from ._build_paths import MPSOLID_EXECUTABLE
 
 # --- Pure-Python parts (written on their own; add their imports here) ---
-# from .run_data import open_run
-# from .study import study
+from .run_data import Run, open_run
+from .study import StudyError, StudyResult, study
 # --- end of the pure-Python parts ---
 
 __all__ = [
@@ -35,4 +36,10 @@ __all__ = [
     "resume",
     "run",
     "version",
+    "toml_value",
+    "open_run",
+    "Run",
+    "study",
+    "StudyResult",
+    "StudyError",
 ]

@@ -98,8 +98,8 @@ def toml_text(value):
     on the command line a bare word is a string)."""
     if isinstance(value, str):
         return value
-    from . import _toml_value
-    return _toml_value(value)
+    from . import toml_value
+    return toml_value(value)
 
 
 def folder_name(point):
@@ -402,7 +402,7 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
         c = Case.load(case_path)
         for o in base + [f"{k}={v}" for k, v in point]:
             key, _, value = o.partition("=")
-            c.set(key, value)
+            c.set_text(key, value)
     exe = executable()
 
     os.makedirs(out, exist_ok=True)
