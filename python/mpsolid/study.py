@@ -408,7 +408,8 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "study.json.tmp"), "w") as f:
         json.dump({"case": os.path.abspath(case_path), "sets": base, "vary": vary,
-                   "measures": [f"{k}:{c}" for k, c in measures], "jobs": jobs, "threads": threads}, f,
+                   "measures": [f"{k}:{c}" for k, c in measures], "jobs": jobs, "threads": threads,
+                   "executable": exe, "package": os.path.dirname(os.path.abspath(__file__))}, f,
                   indent=2)
     os.replace(os.path.join(out, "study.json.tmp"), os.path.join(out, "study.json"))
 

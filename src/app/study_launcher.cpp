@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 #include "python_paths.hpp"
 
@@ -16,31 +17,46 @@ namespace mpsolid {
 namespace {
 namespace fs = std::filesystem;
 
-// The folder holding the `mpsolid` package: the build tree's when this is the
-// build tree's executable, else the installed one.
-fs::path package_parent() {
-  for (const char* dir : {python_paths::build_package_parent, python_paths::install_package_parent})
-    if (*dir && fs::exists(fs::path(dir) / "mpsolid" / "study.py")) return dir;
+bool holds_package(const fs::path& dir) {
+  return fs::exists(dir / "mpsolid" / "study.py");
+}
+
+// The folder holding the `mpsolid` package: for an installed executable, where
+// cmake --install put the package relative to bin/, or the package the
+// executable sits in (pip's mpsolid/bin/mpsolid); else the build tree's.
+fs::path package_parent(const fs::path& self) {
+  std::vector<fs::path> candidates;
+  if (!self.empty()) {
+    const fs::path bin = self.parent_path();
+    if (*python_paths::installed_package_parent)
+      candidates.push_back(bin / python_paths::installed_package_parent);
+    if (bin.filename() == "bin" && bin.parent_path().filename() == "mpsolid")
+      candidates.push_back(bin.parent_path().parent_path());
+  }
+  candidates.emplace_back(python_paths::build_package_parent);
+  for (const fs::path& dir : candidates)
+    if (holds_package(dir)) return dir.lexically_normal();
   return {};
 }
 }  // namespace
 
 int launch_study(const std::vector<std::string>& args) {
-  const fs::path parent = package_parent();
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  const fs::path parent = package_parent(error ? fs::path() : self);
   if (parent.empty()) {
     fmt::print(stderr,
-               "mpsolid: failed: the study needs the Python package, found neither in the build "
-               "tree ({}) nor installed ({}): build with -DMPSOLID_PYTHON=ON\n",
-               python_paths::build_package_parent, python_paths::install_package_parent);
+               "mpsolid: failed: the study needs the Python package mpsolid, found neither in the "
+               "build tree ({}) nor installed beside this executable ({}): build with "
+               "-DMPSOLID_PYTHON=ON (Debian: pybind11-dev, python3-dev)\n",
+               python_paths::build_package_parent, self.string());
     return 1;
   }
   std::string path = parent.string();
   if (const char* old = std::getenv("PYTHONPATH"); old && *old) path += std::string(":") + old;
   setenv("PYTHONPATH", path.c_str(), 1);
   // The study runs its points with this very executable.
-  std::error_code error;
-  const fs::path self = fs::read_symlink("/proc/self/exe", error);
-  if (!error) setenv("MPSOLID_EXECUTABLE", self.c_str(), 1);
+  if (!self.empty()) setenv("MPSOLID_EXECUTABLE", self.c_str(), 1);
 
   std::vector<std::string> argv_text = {python_paths::python, "-m", "mpsolid", "study"};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
