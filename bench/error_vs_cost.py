@@ -15,7 +15,9 @@ dt, its error against the model's Richardson-extrapolated period.
 
 Wall times are measured one run at a time at --threads (2 by default) and
 include set-up; the table and the plot of error against wall time (Pareto
-front marked) go to --docs (accuracy.md, images/error_vs_cost.png).
+front marked) go to --docs (error_vs_cost.md, images/error_vs_cost.png). The
+rod's convergence and run-time tables of docs/accuracy.md are `mpsolid study`
+runs (the commands are there).
 
   bench/error_vs_cost.py                 # everything (about an hour on 2 cores)
   bench/error_vs_cost.py --rod-only      # the rod grid and convergence study
@@ -179,7 +181,7 @@ def plate_error(a, model, extrapolated):
 
 
 def write_docs(args, rows, conv, extrapolated):
-    out = ["# Accuracy and cost: convergence of the rod case, run time against error", "",
+    out = ["# Run time against error, every model: rod and cantilever plate", "",
            "Written by `bench/error_vs_cost.py` (the numbers below are from one run of it;",
            "wall times one run at a time, set-up included, at the thread count of each row: runs",
            "found in the caches keep the thread count they were made at). Single runs on a",
@@ -245,7 +247,7 @@ def write_docs(args, rows, conv, extrapolated):
     os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
     plot(table, os.path.join(args.docs, "images", "error_vs_cost.png"))
     out += ["![error against wall time](images/error_vs_cost.png)", ""]
-    with open(os.path.join(args.docs, "accuracy.md"), "w") as f:
+    with open(os.path.join(args.docs, "error_vs_cost.md"), "w") as f:
         f.write("\n".join(out))
 
 

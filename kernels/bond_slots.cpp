@@ -1,5 +1,6 @@
 #include "kernels/bond_slots.hpp"
 
+#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -106,6 +107,12 @@ std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
       if (bonds.neighbor[b] > i) values[slots.entry_slot[b]] = per_entry[b];
   return values;
+}
+
+void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
+                     const std::vector<double>& per_entry, double* out) {
+  const std::vector<double> values = slot_values(slots, bonds, per_entry);
+  std::copy(values.begin(), values.end(), out);
 }
 
 }  // namespace mpsolid

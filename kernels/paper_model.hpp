@@ -59,8 +59,7 @@ class PaperModelT {
     const EntryCoefficients c = entry_coefficients(p, bonds);
     slot_ = SlotArrays(kFields, slots_.slot_count());
     const auto fill = [&](Field f, const std::vector<double>& per_entry) {
-      const std::vector<double> v = slot_values(slots_, bonds, per_entry);
-      std::copy(v.begin(), v.end(), slot_[f]);
+      fill_slot_array(slots_, bonds, per_entry, slot_[f]);
     };
     fill(kR0x, bonds.r0x);
     fill(kR0y, bonds.r0y);

@@ -13,11 +13,15 @@ run afresh. A study stopped by SIGINT or SIGTERM stops its runs (each writes
 its checkpoint) and exits 4; running the same command again continues it.
 
 Then DIR/study.csv (one row per point: the varied values, the outcome, wall
-time, steps/s and the measures), DIR/richardson.csv and DIR/study.png. When
+time, steps/s and the measures), DIR/richardson.csv, DIR/study.png and
+DIR/study.md (the same tables in Markdown, with the equivalent command). When
 l0 is varied over 3 or more values with a constant ratio, each measure of
 each group of points that differ only in l0 gets the observed order of
 convergence and a Richardson-extrapolated value with an error bar
 (analysis.richardson), and every point of the group its error against it.
+
+--reference KIND:COLUMN=VALUE gives a measure a known value (theory, or a
+finer study's extrapolation): each point's error is then against it.
 
 Measures (history.csv columns, e.g. plate.x, kinetic_energy, rod.xmax):
   first_peak:COL  the first maximum above half the largest value (parabola-refined) and its time
@@ -30,6 +34,7 @@ import json
 import math
 import os
 import re
+import shlex
 import shutil
 import signal
 import subprocess
@@ -91,6 +96,22 @@ def parse_measure(text):
         raise StudyError(f"--measure '{text}': expected KIND:COLUMN with KIND one of "
                          f"{', '.join(MEASURE_KINDS)} (e.g. first_peak:plate.x)")
     return kind, column
+
+
+def parse_reference(text):
+    """'first_peak:plate.x=0.0116961' -> ('first_peak(plate.x)', 0.0116961);
+    'first_peak:plate.x.t=...' names the measure's time."""
+    name, sep, value = text.rpartition("=")
+    try:
+        number = float(value)
+    except ValueError:
+        number = math.nan
+    suffix = ".t" if name.endswith(".t") else ""
+    if not sep or not math.isfinite(number) or number == 0:
+        raise StudyError(f"--reference '{text}': expected KIND:COLUMN=VALUE with a finite, nonzero "
+                         f"VALUE (e.g. first_peak:plate.x=0.0116961)")
+    kind, column = parse_measure(name[:len(name) - len(suffix)] if suffix else name)
+    return f"{kind}({column}){suffix}", number
 
 
 def toml_text(value):
@@ -305,6 +326,70 @@ def write_csv(path, rows, first):
     os.replace(tmp, path)
 
 
+def _cell(value, digits=6):
+    if isinstance(value, float) or _is_number(str(value)):
+        return f"{float(value):.{digits}g}"
+    return str(value) if value is not None else ""
+
+
+def equivalent_command(case_path, vary, sets, measures, references, jobs, threads, out):
+    """The `mpsolid study` command line that runs this study."""
+    words = ["mpsolid", "study", os.path.relpath(case_path)]
+    for k, vs in vary:
+        words += ["--vary", f"{k}={','.join(vs)}"]
+    for o in sets:
+        words += ["--set", o]
+    for kind, column in measures:
+        words += ["--measure", f"{kind}:{column}"]
+    for name, value in references.items():
+        kind, _, rest = name.partition("(")
+        column, _, suffix = rest.rpartition(")")
+        words += ["--reference", f"{kind}:{column}{suffix}={value!r}"]
+    words += ["--jobs", str(jobs), "--threads", str(threads), "--out", os.path.relpath(out)]
+    return shlex.join(words)
+
+
+def write_markdown(path, rows, vary, measures, estimates, command):
+    """study.md: the command, the points and the Richardson estimates as
+    Markdown tables (what a doc quotes)."""
+    keys = [k for k, _ in vary]
+    names = measure_names(measures)
+    lines = ["Made by:", "", "```sh", command, "```", ""]
+    head = keys + ["outcome", "particles", "steps", "wall (s)", "steps/s"]
+    for n in names:
+        head.append(n)
+        if any(f"error({n})" in r for r in rows):
+            head.append(f"error({n}) %")
+    lines += ["| " + " | ".join(head) + " |", "|" + " --- |" * len(head)]
+    for r in rows:
+        outcome = r.get("outcome", "")
+        if outcome not in ("completed", "not run") and r.get("simulated_time", "") != "":
+            outcome += f" at {float(r['simulated_time']) * 1e3:.3g} ms"
+        cells = [str(r[k]) for k in keys] + [outcome, _cell(r.get("particles", "")),
+                                             _cell(r.get("final_step", "")),
+                                             _cell(r.get("wall_seconds", ""), 3),
+                                             _cell(r.get("steps_per_second", ""), 4)]
+        for n in names:
+            cells.append(_cell(r.get(n, "")))
+            if f"error({n}) %" in head:
+                e = r.get(f"error({n})", "")
+                cells.append(f"{100 * float(e):.3g}" if e != "" else "")
+        lines.append("| " + " | ".join(cells) + " |")
+    if estimates:
+        others = [k for k in keys if k != "l0"]
+        head = others + ["measure", "l0", "observed order", "extrapolated", "error bar"]
+        lines += ["", "| " + " | ".join(head) + " |", "|" + " --- |" * len(head)]
+        for e in estimates:
+            lines.append("| " + " | ".join([str(e[k]) for k in others]
+                                           + [e["measure"], e["l0"].replace(";", ", "),
+                                              _cell(e["observed_order"], 3), _cell(e["extrapolated"], 7),
+                                              _cell(e["error_bar"], 2)]) + " |")
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(tmp, path)
+
+
 def plot(path, rows, vary, measures, estimates, title):
     """One panel per measure (value against the first numeric varied key, a
     line per group, Richardson bands), and the wall time."""
@@ -374,7 +459,7 @@ class StudyResult:
 
 
 def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixed_threads=False,
-          plot_png=True, log=print):
+          plot_png=True, log=print, references=()):
     """Runs the grid `vary` ({key: [values]} or [(key, [values])], values as
     Python values or TOML texts) of `case` (a path, or an mpsolid.Case whose
     overrides apply to every point), `sets` ("key=value" for every point),
@@ -388,6 +473,11 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     if len({k for k, _ in vary}) != len(vary):
         raise StudyError("a key is varied twice")
     measures = [parse_measure(m) if isinstance(m, str) else tuple(m) for m in measures]
+    references = dict(parse_reference(r) if isinstance(r, str) else tuple(r) for r in references)
+    for name in references:
+        if name not in measure_names(measures):
+            raise StudyError(f"--reference for {name}: that is not one of the measures "
+                             f"({', '.join(measure_names(measures)) or 'none given'})")
     if jobs < 1:
         raise StudyError(f"--jobs {jobs}: must be at least 1")
     cores = os.cpu_count() or 1
@@ -408,7 +498,8 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "study.json.tmp"), "w") as f:
         json.dump({"case": os.path.abspath(case_path), "sets": base, "vary": vary,
-                   "measures": [f"{k}:{c}" for k, c in measures], "jobs": jobs, "threads": threads,
+                   "measures": [f"{k}:{c}" for k, c in measures], "references": references,
+                   "jobs": jobs, "threads": threads,
                    "executable": exe, "package": os.path.dirname(os.path.abspath(__file__))}, f,
                   indent=2)
     os.replace(os.path.join(out, "study.json.tmp"), os.path.join(out, "study.json"))
@@ -432,6 +523,11 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     status = _run_all(points, one, jobs, runner, failures)
     rows = [point_row(p, os.path.join(out, folder_name(p)), measures) for p in points]
     estimates = richardson_rows(rows, vary, measures) if status == 0 else []
+    # A stated reference replaces the Richardson estimate as what errors are against.
+    for row in rows:
+        for name, ref in references.items():
+            if row.get(name, "") != "":
+                row[f"error({name})"] = abs(float(row[name]) / ref - 1)
     first = [k for k, _ in vary] + ["outcome"]
     write_csv(os.path.join(out, "study.csv"), rows, first)
     if estimates:
@@ -445,6 +541,8 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
             else:
                 log(f"mpsolid study: {where}: no observed order (the changes do not shrink "
                     f"steadily): finest {e['extrapolated']:.6g} ± {e['error_bar']:.2g} (the last change)")
+    write_markdown(os.path.join(out, "study.md"), rows, vary, measures, estimates,
+                   equivalent_command(case_path, vary, base, measures, references, jobs, threads, out))
     if plot_png and status == 0:
         plot(os.path.join(out, "study.png"), rows, vary, measures, estimates, f"study of {name}")
     if failures:
@@ -507,6 +605,9 @@ def main(argv=None):
                    help="a case key for every point")
     p.add_argument("--measure", action="append", default=[], metavar="KIND:COLUMN",
                    help="first_peak|max|min|final : a history.csv column")
+    p.add_argument("--reference", action="append", default=[], metavar="KIND:COLUMN=VALUE",
+                   help="a measure's reference value: each point's error against it (instead of "
+                        "the Richardson estimate); KIND:COLUMN.t=VALUE for its time")
     p.add_argument("--jobs", type=int, default=1, help="points run at the same time (default 1)")
     p.add_argument("--threads", type=int, default=None,
                    help="threads per run (default: the cores divided by --jobs)")
@@ -517,7 +618,8 @@ def main(argv=None):
     try:
         vary = [parse_vary(v) for v in args.vary]
         r = study(args.case, vary, measures=args.measure, sets=args.sets, out=args.out, jobs=args.jobs,
-                  threads=args.threads, fixed_threads=args.fixed_threads, plot_png=not args.no_plot)
+                  threads=args.threads, fixed_threads=args.fixed_threads, plot_png=not args.no_plot,
+                  references=args.reference)
     except ValueError as e:  # StudyError and mpsolid.InputError
         print(f"mpsolid: error: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -525,8 +627,9 @@ def main(argv=None):
         print(f"mpsolid study: stopped; run the same command again to continue ({r.folder})",
               file=sys.stderr)
     else:
-        print(f"mpsolid study: wrote {os.path.join(r.folder, 'study.csv')}"
-              + (" and richardson.csv" if r.richardson else "") + " and study.png")
+        written = ["study.csv"] + (["richardson.csv"] if r.richardson else []) + ["study.md"] \
+            + ([] if args.no_plot else ["study.png"])
+        print(f"mpsolid study: wrote {', '.join(written)} in {r.folder}")
     return r.status
 
 

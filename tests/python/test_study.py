@@ -68,7 +68,7 @@ class Study(unittest.TestCase):
         out = os.path.join(self.dir, "s")
         r = cli("study", CASE, "--vary", "l0=0.004,0.002", "--vary", "model=paper,finite_strain",
                 "--set", "time.end=0.0005", "--measure", "max:kinetic_energy", "--measure", "final:plate.x",
-                "--jobs", "2", "--out", out)
+                "--reference", "final:plate.x=0.0004", "--jobs", "2", "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr + r.stdout)
         rows = read_csv(os.path.join(out, "study.csv"))
         self.assertEqual([(x["l0"], x["model"]) for x in rows],
@@ -78,6 +78,7 @@ class Study(unittest.TestCase):
             self.assertEqual(x["outcome"], "completed")
             self.assertGreater(float(x["max(kinetic_energy)"]), 0)
             self.assertGreater(float(x["final(plate.x)"]), 0)
+            self.assertEqual(float(x["error(final(plate.x))"]), abs(float(x["final(plate.x)"]) / 0.0004 - 1))
             self.assertGreater(float(x["wall_seconds"]), 0)
         self.assertTrue(os.path.getsize(os.path.join(out, "study.png")) > 10000)
         self.assertFalse(os.path.exists(os.path.join(out, "richardson.csv")))  # 2 spacings only
@@ -112,6 +113,15 @@ class Study(unittest.TestCase):
         for r in result.rows:
             self.assertIn("error(first_peak(plate.x))", r)
         self.assertTrue(os.path.isfile(os.path.join(result.folder, "richardson.csv")))
+        # study.md: the equivalent command and both tables, the values as in study.csv.
+        with open(os.path.join(result.folder, "study.md")) as f:
+            md = f.read()
+        self.assertIn("mpsolid study ", md)
+        self.assertIn("--vary l0=0.004,0.002,0.001", md)
+        self.assertIn("--measure first_peak:plate.x", md)
+        self.assertIn(f"| {est['observed_order']:.3g} | {est['extrapolated']:.7g} |", md)
+        self.assertIn(f"| 0.002 | completed | 1130 |", md)
+        self.assertIn(f"{peaks[1]:.6g}", md)
 
     def test_bad_input_is_refused_before_anything_runs(self):
         out = os.path.join(self.dir, "bad")
@@ -124,7 +134,11 @@ class Study(unittest.TestCase):
         for args, words in ((["--vary", "l0"], "expected KEY=VALUE1"),
                             (["--vary", "l0=0.002", "--measure", "peak:plate.x"], "KIND:COLUMN"),
                             (["--vary", "l0=0.002,0.002"], "listed twice"),
-                            (["--vary", "l0=0.002", "--jobs", "0"], "at least 1")):
+                            (["--vary", "l0=0.002", "--jobs", "0"], "at least 1"),
+                            (["--vary", "l0=0.002", "--measure", "final:plate.x", "--reference",
+                              "final:plate.x=abc"], "KIND:COLUMN=VALUE"),
+                            (["--vary", "l0=0.002", "--measure", "final:plate.x", "--reference",
+                              "max:plate.x=1"], "not one of the measures")):
             r = cli("study", CASE, *args, "--out", out)
             self.assertEqual(r.returncode, 2, args)
             self.assertIn(words, r.stderr)
