@@ -370,6 +370,10 @@ class PaperModelT {
                           const double* __restrict uy, const double* __restrict inv_len,
                           const double* __restrict extension, double* __restrict fx,
                           double* __restrict fy, double* __restrict torque) {
+    // Inlined into the gather, GCC loses the restrict qualifiers of the
+    // energy-consistent instance and leaves it scalar (2.6x slower): the
+    // bonds m are independent, say so.
+#pragma GCC ivdep
     for (std::size_t m = 0; m < count; ++m)
       add_bond_force<Owner>(fx[m], fy[m], torque[m], pi[m], pj[m], k[m], vc[m], rx[m], ry[m], ux[m],
                             uy[m], inv_len[m], EnergyConsistent ? extension[m] : 0.0);
