@@ -163,7 +163,8 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       set_thread_count(governor.threads());
       const auto started = std::chrono::steady_clock::now();
       const double waited = team_wait_seconds();
-      const std::int64_t steps = std::min(every.chunk, next - sim.step());
+      const std::int64_t steps =
+          std::min({every.chunk, next - sim.step(), governor.max_batch_steps()});
       sim.advance(steps);
       governor.record(
           steps, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),

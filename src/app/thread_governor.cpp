@@ -1,6 +1,7 @@
 #include "src/app/thread_governor.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace mpsolid {
 
@@ -10,10 +11,37 @@ ThreadGovernor::ThreadGovernor(int requested, bool adaptive)
 void ThreadGovernor::record(std::int64_t steps, double seconds, double wait_seconds) {
   seconds_at_[current_] += seconds;
   if (!adaptive_ || requested_ == 1) return;
+  if (seconds > 0) last_rate_ = static_cast<double>(steps) / seconds;
   steps_ += steps;
   seconds_ += seconds;
   wait_ += wait_seconds;
-  if (seconds_ >= kWindowSeconds) end_window();
+  if (seconds_ >= window_seconds()) end_window();
+}
+
+std::int64_t ThreadGovernor::max_batch_steps() const {
+  if (!adaptive_ || requested_ == 1) return std::numeric_limits<std::int64_t>::max();
+  if (last_rate_ <= 0) return kFirstBatch;
+  return std::max(kMinBatch, static_cast<std::int64_t>(last_rate_ * window_seconds() / 5));
+}
+
+double ThreadGovernor::window_seconds() const {
+  if (windows_ == 0) return kStartSeconds;
+  return windows_ == 1 || stage_ == Stage::trial ? kTrialSeconds : kWindowSeconds;
+}
+
+void ThreadGovernor::resize(int size) {
+  if (size != current_) last_rate_ = 0;  // its rate at the new size is not known yet
+  current_ = size;
+}
+
+void ThreadGovernor::conclude(bool better) {
+  if (better) {
+    resize(trial_);
+    ++changes_;
+  }
+  if (trial_ > base_) retry_after_ = better ? kFirstRetry : std::min(2 * retry_after_, kLastRetry);
+  stage_ = Stage::steady;
+  windows_since_change_ = 0;
 }
 
 void ThreadGovernor::end_window() {
@@ -23,23 +51,18 @@ void ThreadGovernor::end_window() {
   seconds_ = wait_ = 0;
   if (++windows_ == 1) return;  // start-up
   switch (stage_) {
-    case Stage::trial:  // back to the base size for one window
+    case Stage::trial:
       rate_trial_ = rate;
-      current_ = base_;
+      if (rate_trial_ > kDecisive * rate_before_) {
+        conclude(true);
+        return;
+      }
+      resize(base_);  // back to the base size for one window
       stage_ = Stage::check;
       return;
-    case Stage::check: {
-      const bool better = rate_trial_ > kBetter * std::max(rate_before_, rate);
-      if (better) {
-        current_ = trial_;
-        ++changes_;
-      }
-      if (trial_ > base_)
-        retry_after_ = better ? kFirstRetry : std::min(2 * retry_after_, kLastRetry);
-      stage_ = Stage::steady;
-      windows_since_change_ = 0;
+    case Stage::check:
+      conclude(rate_trial_ > kBetter * std::max(rate_before_, rate));
       return;
-    }
     case Stage::steady:
       break;
   }
@@ -48,7 +71,7 @@ void ThreadGovernor::end_window() {
     base_ = current_;
     trial_ = size;
     rate_before_ = rate;
-    current_ = size;
+    resize(size);
     stage_ = Stage::trial;
   };
   if (current_ > 1 && wait_share > kWaitShare)

@@ -4,16 +4,20 @@
 // busy with other work, a thread that the OS deschedules holds the team up
 // at every barrier, and fewer threads can be faster than more.
 //
-// It measures windows of about a quarter of a second. When the threads
-// spent more than a fifth of their time waiting, it runs one window with
-// one thread fewer, then one more with the current size again, and keeps
-// the smaller team only if it beat both neighbouring windows by 5 % (the
-// cost of a step drifts as a run goes on: a trial must beat the windows on
-// both sides of it). Below the requested size it tries one thread more
-// the same way, after 1 s, then after twice as long each time that fails
-// (at most 16 s). The first window is not judged (start-up). On an idle
-// machine the threads hardly wait and the requested size is kept.
-// --fixed-threads turns it off.
+// It measures windows of about a quarter of a second (the first judged one
+// a tenth). When the threads spent more than a fifth of their time waiting,
+// it runs one shorter window (a tenth of a second) with one thread fewer, then one more with
+// the current size again, and keeps the smaller team only if it beat both
+// neighbouring windows by 5 % (the cost of a step drifts as a run goes on:
+// a trial must beat the windows on both sides of it), or at once if it ran
+// 1.5x as fast as the window before it (no drift does that). Below the
+// requested size it tries one thread more the same way, after 1 s, then
+// after twice as long each time that fails (at most 16 s). The first
+// window, a twentieth of a second, is not judged (start-up). So with one
+// other busy process on 2 cores, where 2 threads run at half the speed of
+// 1, a run loses about 0.1 s at the start and a tenth of a second per
+// retry. On an idle machine the threads hardly wait and the requested size
+// is kept. --fixed-threads turns it off.
 #include <cstdint>
 #include <map>
 
@@ -33,18 +37,34 @@ class ThreadGovernor {
   int changes() const { return changes_; }
 
   static constexpr double kWindowSeconds = 0.25;
+  static constexpr double kTrialSeconds = 0.1;
+  static constexpr double kStartSeconds = 0.05;
+  // The length of the window being measured now.
+  double window_seconds() const;
+  // The most steps the next batch should take: a fifth of the window at the
+  // last batch's rate (at least kMinBatch; kFirstBatch before any is
+  // measured at the current size), so that a window ends on time even where the team runs slowly
+  // (on a busy machine 2 threads can run a batch of 500 steps in 0.3 s). No
+  // limit when the size is fixed.
+  std::int64_t max_batch_steps() const;
+  static constexpr std::int64_t kFirstBatch = 16, kMinBatch = 16;
 
  private:
   void end_window();
+  // Ends a trial: keeps its size if it was better, and sets when to retry.
+  void conclude(bool better);
+  void resize(int size);
 
   static constexpr double kWaitShare = 0.2;  // waiting above this: try one thread fewer
   static constexpr double kBetter = 1.05;    // a trial must be this much faster to stay
+  static constexpr double kDecisive = 1.5;   // ... or this much faster than the window before it
   static constexpr int kFirstRetry = 4, kLastRetry = 64;  // windows before trying one more
 
   enum class Stage { steady, trial, check };
 
   int requested_, current_;
   bool adaptive_;
+  double last_rate_ = 0;  // steps per second of the last batch
   // The window being measured.
   std::int64_t steps_ = 0;
   double seconds_ = 0, wait_ = 0;

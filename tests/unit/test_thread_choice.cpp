@@ -3,6 +3,8 @@
 // The governor that gives up threads that only wait on a busy machine.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cstdlib>
 
 #include "src/app/thread_choice.hpp"
@@ -71,7 +73,7 @@ TEST(ThreadChoice, MoreThreadsThanCoresWarn) {
 // Feeds the governor one measuring window at its current size: `rate`
 // steps per second, the threads waiting `wait_share` of their time.
 void window(ThreadGovernor& g, double rate, double wait_share) {
-  const double dt = ThreadGovernor::kWindowSeconds / 5;
+  const double dt = g.window_seconds() / 5;
   for (int k = 0; k < 5; ++k)
     g.record(static_cast<std::int64_t>(rate * dt), dt * 1.0000001, wait_share * dt * g.threads());
 }
@@ -89,7 +91,7 @@ TEST(ThreadGovernor, DropsAThreadThatOnlyWaitsAndTriesItAgainLater) {
   EXPECT_EQ(g.threads(), 2);
   window(g, 1000, 0.4);  // waiting: try 1 thread
   EXPECT_EQ(g.threads(), 1);
-  window(g, 1800, 0.0);  // the trial; then 2 threads again for one window
+  window(g, 1300, 0.0);  // the trial, 1.3x faster; then 2 threads again for one window
   EXPECT_EQ(g.threads(), 2);
   window(g, 1000, 0.4);  // the trial beat both sides: kept
   EXPECT_EQ(g.threads(), 1);
@@ -112,6 +114,41 @@ TEST(ThreadGovernor, DropsAThreadThatOnlyWaitsAndTriesItAgainLater) {
     ++windows;
   }
   EXPECT_EQ(windows, 8);
+}
+
+TEST(ThreadGovernor, ADecisiveTrialIsKeptAtOnceInShortWindows) {
+  ThreadGovernor g(2, true);
+  EXPECT_EQ(g.window_seconds(), ThreadGovernor::kStartSeconds);
+  window(g, 1000, 0.4);                                          // start-up
+  EXPECT_EQ(g.window_seconds(), ThreadGovernor::kTrialSeconds);  // the first judged one: short
+  window(g, 1000, 0.4);  // waiting: try 1 thread, in a short window
+  EXPECT_EQ(g.threads(), 1);
+  EXPECT_EQ(g.window_seconds(), ThreadGovernor::kTrialSeconds);
+  // The rate at 1 thread is not known yet: a short first batch.
+  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kFirstBatch);
+  window(g, 2000, 0.0);  // twice as fast: kept without a check window
+  EXPECT_EQ(g.threads(), 1);
+  EXPECT_EQ(g.changes(), 1);
+  EXPECT_EQ(g.window_seconds(), ThreadGovernor::kWindowSeconds);
+  // Seconds at 2 threads: the start-up and the judged window only.
+  EXPECT_NEAR(g.seconds_at().at(2),
+              1.0000001 * (ThreadGovernor::kStartSeconds + ThreadGovernor::kTrialSeconds), 1e-9);
+}
+
+TEST(ThreadGovernor, BatchesFitAFifthOfTheWindowAtTheLastRate) {
+  ThreadGovernor g(2, true);
+  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kFirstBatch);
+  g.record(16, 0.01, 0.0);  // 1600 steps/s in the start-up window (0.05 s)
+  EXPECT_EQ(g.max_batch_steps(), 16);
+  g.record(2000, 0.04, 0.0);  // 50,000 steps/s; the next window is 0.1 s
+  EXPECT_EQ(g.max_batch_steps(), 1000);
+  g.record(5000, 0.1, 0.0);  // after it, windows of 0.25 s
+  EXPECT_EQ(g.max_batch_steps(), 2500);
+  g.record(1, 1.0, 0.0);  // very slow: never below the minimum
+  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kMinBatch);
+  ThreadGovernor fixed(2, false), one(1, true);
+  EXPECT_EQ(fixed.max_batch_steps(), std::numeric_limits<std::int64_t>::max());
+  EXPECT_EQ(one.max_batch_steps(), std::numeric_limits<std::int64_t>::max());
 }
 
 TEST(ThreadGovernor, ATrialMustBeatTheWindowsOnBothSides) {
