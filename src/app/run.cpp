@@ -319,21 +319,35 @@ std::filesystem::path default_out_dir(const std::string& case_name,
                      static_cast<std::uint32_t>(h.value() ^ (h.value() >> 32)));
 }
 
-int run_case(const CaseSpec& spec, const RunOptions& options) {
-  RunFacts facts = begin_segment(options, 0);
-  check_memory(spec, available_memory_bytes());
-  Simulation sim(spec);
-  prepare_output_folder(options.out_dir);
-  FolderLock lock(options.out_dir);
-  if (const std::string earlier = earlier_results(options.out_dir);
-      !earlier.empty() && !options.force)
+// Refuses a folder that holds an earlier run's results, unless --force.
+void refuse_earlier_results(const RunOptions& options) {
+  if (options.force) return;
+  if (const std::string earlier = earlier_results(options.out_dir); !earlier.empty())
     throw InputError(fmt::format(
         "{} holds the results of an earlier run ({}); give --force to replace them, --out for "
         "another folder, or continue a stopped run with: mpsolid resume {}",
         options.out_dir.string(), earlier, options.out_dir.string()));
+}
+
+int run_case(const CaseSpec& spec, const RunOptions& options) {
+  RunFacts facts = begin_segment(options, 0);
+  check_memory(spec, available_memory_bytes());
+  // An existing folder is locked and checked before the set-up (seconds to
+  // minutes on a large case); a new one once it is made.
+  std::optional<FolderLock> lock;
+  if (std::filesystem::is_directory(options.out_dir)) {
+    lock.emplace(options.out_dir);
+    refuse_earlier_results(options);
+  }
+  Simulation sim(spec);
+  prepare_output_folder(options.out_dir);
+  if (!lock) {
+    lock.emplace(options.out_dir);
+    refuse_earlier_results(options);
+  }
   return with_failed_writes_explained(options.out_dir, [&] {
     RunFolder outputs(options.out_dir, sim.state(), sim.spec());
-    lock.record_owner();
+    lock->record_owner();
     return run_loop(sim, outputs, facts, options, true);
   });
 }

@@ -448,6 +448,18 @@ else
   fail "seeded_no_force: exit $rc, or the folder changed"
   show seeded_no_force
 fi
+# ... before the set-up: a case whose set-up would fail (a finite_strain rod
+# one particle thick) is refused for the folder, not for the set-up.
+mp seeded_before_setup run "$CASE" --set model=finite_strain --set 'bodies.rod.y=[-0.001,0.001]' \
+  --out "$SEEDED" --threads 1
+if [[ $rc -eq 2 ]] && grep -qF "holds the results of an earlier run" "$TMP/seeded_before_setup.err" &&
+  ! grep -qF "deformation gradient" "$TMP/seeded_before_setup.err" &&
+  [[ "$(snapshot "$SEEDED")" == "$SEEDED_BEFORE" ]]; then
+  ok "seeded_before_setup: refused for the earlier results before the set-up ran"
+else
+  fail "seeded_before_setup: exit $rc, not refused for the earlier results first"
+  show seeded_before_setup
+fi
 expect_exit repeat_no_force 2 "run.json: case shock_rod, model paper, completed at step 2000" -- \
   run "$CASE" --set time.end=2e-5 --set output.frame_interval=1e-5 \
   --set output.history_interval=1e-6 --out "$OUT" --threads 2
