@@ -13,7 +13,6 @@
 #include "src/case/case_overrides.hpp"
 #include "src/case/resolved_case.hpp"
 #include "src/case/table_reader.hpp"
-#include "src/core/geometry.hpp"
 
 namespace mpsolid {
 
@@ -160,8 +159,7 @@ void read_bodies(TableReader& top, CaseSpec& c) {
           top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more "
                                      "than this build supports ({} particles)",
                                      c.l0, estimate, name, kMaxParticles));
-        const std::int64_t sites =
-            lattice_span(b.x[0], b.x[1], c.l0).count() * lattice_span(b.y[0], b.y[1], c.l0).count();
+        const std::int64_t sites = b.site_count(c.l0);
         if (sites == 0)
           throw InputError(
               fmt::format("{}: bodies.{}: the body is empty: no lattice site (centre at (k + "

@@ -40,6 +40,8 @@ struct BodySpec {
   bool has_mode = false;
   BendingMode mode;
   Hold hold = Hold::none;
+  // Lattice sites in the rectangle at spacing l0 (centres at (k + 1/2) l0).
+  std::int64_t site_count(double l0) const;
 };
 
 // A named probe: the particle nearest `at` in the initial configuration
