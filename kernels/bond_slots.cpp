@@ -1,6 +1,5 @@
 #include "kernels/bond_slots.hpp"
 
-#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -100,19 +99,18 @@ BondSlots make_bond_slots(const BondTable& bonds) {
   return s;
 }
 
+void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
+                     const std::vector<double>& per_entry, double* out) {
+  for (std::size_t i = 0; i < slots.particles; ++i)
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
+      if (bonds.neighbor[b] > i) out[slots.entry_slot[b]] = per_entry[b];
+}
+
 std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
                                 const std::vector<double>& per_entry) {
   std::vector<double> values(slots.slot_count(), 0.0);
-  for (std::size_t i = 0; i < slots.particles; ++i)
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
-      if (bonds.neighbor[b] > i) values[slots.entry_slot[b]] = per_entry[b];
+  fill_slot_array(slots, bonds, per_entry, values.data());
   return values;
-}
-
-void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
-                     const std::vector<double>& per_entry, double* out) {
-  const std::vector<double> values = slot_values(slots, bonds, per_entry);
-  std::copy(values.begin(), values.end(), out);
 }
 
 }  // namespace mpsolid

@@ -79,7 +79,8 @@ BondSlots make_bond_slots(const BondTable& bonds);
 // a bond (a coefficient), taken from the owner's entry; 0 in empty slots.
 std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
                                 const std::vector<double>& per_entry);
-// The same, written into a slot array (`out`: slot_count() values).
+// The same, written into a slot array (`out`: slot_count() values; empty
+// slots are left as they are).
 void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
                      const std::vector<double>& per_entry, double* out);
 

@@ -37,11 +37,8 @@ void init(State& st) {
   for (size_t d = 0; d < ND; ++d)
     for (size_t i = 0; i + offs[d] < n; ++i) {
       size_t j = i + offs[d];
-      double rx = st.x[j] - st.x[i], ry = st.y[j] - st.y[i];
       st.f[R0X][d * n + i] = 0.001 * (double)((long)(j % W) - (long)(i % W));
       st.f[R0Y][d * n + i] = 0.001 * (double)((long)(j / W) - (long)(i / W));
-      (void)rx;
-      (void)ry;
       st.f[COEF][d * n + i] = 0.3;
       st.f[K][d * n + i] = 1e3;
       st.f[VC][d * n + i] = 1e-7;

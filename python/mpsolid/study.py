@@ -99,19 +99,20 @@ def parse_measure(text):
 
 
 def parse_reference(text):
-    """'first_peak:plate.x=0.0116961' -> ('first_peak(plate.x)', 0.0116961);
+    """'first_peak:plate.x=0.0116961' -> ('first_peak:plate.x', 'first_peak(plate.x)', 0.0116961):
+    the option's KIND:COLUMN, the measure's name in study.csv, the value;
     'first_peak:plate.x.t=...' names the measure's time."""
-    name, sep, value = text.rpartition("=")
+    option, sep, value = text.rpartition("=")
     try:
         number = float(value)
     except ValueError:
         number = math.nan
-    suffix = ".t" if name.endswith(".t") else ""
     if not sep or not math.isfinite(number) or number == 0:
         raise StudyError(f"--reference '{text}': expected KIND:COLUMN=VALUE with a finite, nonzero "
                          f"VALUE (e.g. first_peak:plate.x=0.0116961)")
-    kind, column = parse_measure(name[:len(name) - len(suffix)] if suffix else name)
-    return f"{kind}({column}){suffix}", number
+    timed = option.endswith(".t")
+    kind, column = parse_measure(option.removesuffix(".t"))
+    return option, f"{kind}({column})" + (".t" if timed else ""), number
 
 
 def toml_text(value):
@@ -341,10 +342,8 @@ def equivalent_command(case_path, vary, sets, measures, references, jobs, thread
         words += ["--set", o]
     for kind, column in measures:
         words += ["--measure", f"{kind}:{column}"]
-    for name, value in references.items():
-        kind, _, rest = name.partition("(")
-        column, _, suffix = rest.rpartition(")")
-        words += ["--reference", f"{kind}:{column}{suffix}={value!r}"]
+    for option, _, value in references:
+        words += ["--reference", f"{option}={value!r}"]
     words += ["--jobs", str(jobs), "--threads", str(threads), "--out", os.path.relpath(out)]
     return shlex.join(words)
 
@@ -473,8 +472,8 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     if len({k for k, _ in vary}) != len(vary):
         raise StudyError("a key is varied twice")
     measures = [parse_measure(m) if isinstance(m, str) else tuple(m) for m in measures]
-    references = dict(parse_reference(r) if isinstance(r, str) else tuple(r) for r in references)
-    for name in references:
+    references = [parse_reference(r) for r in references]
+    for _, name, _ in references:
         if name not in measure_names(measures):
             raise StudyError(f"--reference for {name}: that is not one of the measures "
                              f"({', '.join(measure_names(measures)) or 'none given'})")
@@ -498,7 +497,8 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "study.json.tmp"), "w") as f:
         json.dump({"case": os.path.abspath(case_path), "sets": base, "vary": vary,
-                   "measures": [f"{k}:{c}" for k, c in measures], "references": references,
+                   "measures": [f"{k}:{c}" for k, c in measures],
+                   "references": {name: value for _, name, value in references},
                    "jobs": jobs, "threads": threads,
                    "executable": exe, "package": os.path.dirname(os.path.abspath(__file__))}, f,
                   indent=2)
@@ -525,7 +525,7 @@ def study(case, vary, measures=(), sets=(), out=None, jobs=1, threads=None, fixe
     estimates = richardson_rows(rows, vary, measures) if status == 0 else []
     # A stated reference replaces the Richardson estimate as what errors are against.
     for row in rows:
-        for name, ref in references.items():
+        for _, name, ref in references:
             if row.get(name, "") != "":
                 row[f"error({name})"] = abs(float(row[name]) / ref - 1)
     first = [k for k, _ in vary] + ["outcome"]

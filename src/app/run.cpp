@@ -335,16 +335,14 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   // An existing folder is locked and checked before the set-up (seconds to
   // minutes on a large case); a new one once it is made.
   std::optional<FolderLock> lock;
-  if (std::filesystem::is_directory(options.out_dir)) {
+  const auto lock_and_check = [&] {
     lock.emplace(options.out_dir);
     refuse_earlier_results(options);
-  }
+  };
+  if (std::filesystem::is_directory(options.out_dir)) lock_and_check();
   Simulation sim(spec);
   prepare_output_folder(options.out_dir);
-  if (!lock) {
-    lock.emplace(options.out_dir);
-    refuse_earlier_results(options);
-  }
+  if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {
     RunFolder outputs(options.out_dir, sim.state(), sim.spec());
     lock->record_owner();

@@ -20,7 +20,7 @@ void ThreadGovernor::record(std::int64_t steps, double seconds, double wait_seco
 
 std::int64_t ThreadGovernor::max_batch_steps() const {
   if (!adaptive_ || requested_ == 1) return std::numeric_limits<std::int64_t>::max();
-  if (last_rate_ <= 0) return kFirstBatch;
+  if (last_rate_ <= 0) return kMinBatch;
   return std::max(kMinBatch, static_cast<std::int64_t>(last_rate_ * window_seconds() / 5));
 }
 

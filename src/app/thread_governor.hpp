@@ -6,17 +6,18 @@
 //
 // It measures windows of about a quarter of a second (the first judged one
 // a tenth). When the threads spent more than a fifth of their time waiting,
-// it runs one shorter window (a tenth of a second) with one thread fewer, then one more with
-// the current size again, and keeps the smaller team only if it beat both
-// neighbouring windows by 5 % (the cost of a step drifts as a run goes on:
-// a trial must beat the windows on both sides of it), or at once if it ran
-// 1.5x as fast as the window before it (no drift does that). Below the
+// it runs one shorter window (a tenth of a second) with one thread fewer,
+// then one more with the current size again, and keeps the smaller team
+// only if it beat both neighbouring windows by 5 % (the cost of a step
+// drifts as a run goes on: a trial must beat the windows on both sides of
+// it), or at once if it ran 1.5x as fast as the window before it (no drift
+// does that). Below the
 // requested size it tries one thread more the same way, after 1 s, then
 // after twice as long each time that fails (at most 16 s). The first
 // window, a twentieth of a second, is not judged (start-up). So with one
-// other busy process on 2 cores, where 2 threads run at half the speed of
-// 1, a run loses about 0.1 s at the start and a tenth of a second per
-// retry. On an idle machine the threads hardly wait and the requested size
+// other busy process on 2 cores, where 2 threads ran at about 0.6 of 1
+// thread's speed, a run spends about 0.15 s at 2 threads at the start and
+// a tenth of a second per retry. On an idle machine the threads hardly wait and the requested size
 // is kept. --fixed-threads turns it off.
 #include <cstdint>
 #include <map>
@@ -42,12 +43,12 @@ class ThreadGovernor {
   // The length of the window being measured now.
   double window_seconds() const;
   // The most steps the next batch should take: a fifth of the window at the
-  // last batch's rate (at least kMinBatch; kFirstBatch before any is
-  // measured at the current size), so that a window ends on time even where the team runs slowly
-  // (on a busy machine 2 threads can run a batch of 500 steps in 0.3 s). No
-  // limit when the size is fixed.
+  // last batch's rate, at least kMinBatch (and just that until a rate at the
+  // current size is measured), so that a window ends on time even where the
+  // team runs slowly (with two other busy processes on 2 cores, 2 threads
+  // took 0.28 s for a batch of 500 steps). No limit when the size is fixed.
   std::int64_t max_batch_steps() const;
-  static constexpr std::int64_t kFirstBatch = 16, kMinBatch = 16;
+  static constexpr std::int64_t kMinBatch = 16;
 
  private:
   void end_window();

@@ -125,7 +125,7 @@ TEST(ThreadGovernor, ADecisiveTrialIsKeptAtOnceInShortWindows) {
   EXPECT_EQ(g.threads(), 1);
   EXPECT_EQ(g.window_seconds(), ThreadGovernor::kTrialSeconds);
   // The rate at 1 thread is not known yet: a short first batch.
-  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kFirstBatch);
+  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kMinBatch);
   window(g, 2000, 0.0);  // twice as fast: kept without a check window
   EXPECT_EQ(g.threads(), 1);
   EXPECT_EQ(g.changes(), 1);
@@ -137,10 +137,10 @@ TEST(ThreadGovernor, ADecisiveTrialIsKeptAtOnceInShortWindows) {
 
 TEST(ThreadGovernor, BatchesFitAFifthOfTheWindowAtTheLastRate) {
   ThreadGovernor g(2, true);
-  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kFirstBatch);
-  g.record(16, 0.01, 0.0);  // 1600 steps/s in the start-up window (0.05 s)
-  EXPECT_EQ(g.max_batch_steps(), 16);
-  g.record(2000, 0.04, 0.0);  // 50,000 steps/s; the next window is 0.1 s
+  EXPECT_EQ(g.max_batch_steps(), ThreadGovernor::kMinBatch);
+  g.record(16, 0.004, 0.0);  // 4000 steps/s in the start-up window (0.05 s)
+  EXPECT_EQ(g.max_batch_steps(), 40);
+  g.record(2300, 0.046, 0.0);  // 50,000 steps/s, ending the start-up; the next window is 0.1 s
   EXPECT_EQ(g.max_batch_steps(), 1000);
   g.record(5000, 0.1, 0.0);  // after it, windows of 0.25 s
   EXPECT_EQ(g.max_batch_steps(), 2500);
