@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "src/core/bonds.hpp"
@@ -123,28 +124,42 @@ void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&
   }
 }
 
-// Particles per gather chunk: a chunk's accumulators stay in L1.
-inline constexpr std::size_t kGatherChunk = 256;
+// Eight particles' values side by side, in GCC's vector extension: a gather
+// keeps eight particles' sums in registers across all their bonds. GCC lowers
+// it to the target's vectors (one AVX-512 register, two AVX2 or four SSE2
+// ones). Lane-wise +, -, * and / are the scalar IEEE operations, so each lane
+// gives the bits of the scalar code.
+inline constexpr std::size_t kLanes = 8;
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+inline Lanes load_lanes(const double* from) {
+  Lanes v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+inline void store_lanes(double* to, Lanes v) {
+  std::memcpy(to, &v, sizeof v);
+}
 
 // A gather over the particles of `block`, each adding its bonds in CSR
-// order. On pattern runs, in chunks of at most kGatherChunk particles:
-// entry(count, m, j, slot, owner) for the k-th entries of the `count`
-// particles from m, whose partners start at j and slots at `slot` (all with
-// unit stride; owner: m < j), one call per k in row order, then
-// finish(m, count). Each particle off the patterns: row(i).
-template <class Entry, class Finish, class Row>
-void gather_rows(const BondSlots& s, Range block, Entry&& entry, Finish&& finish, Row&& row) {
+// order. On pattern runs of at least kLanes particles, kLanes particles at a
+// time: lanes(m, pattern, first) for particles m .. m + kLanes - 1, whose
+// k-th entries read slot m + slot_shift[k] and partner m + partner_shift[k]
+// (unit stride across the lanes). The last group of a run overlaps the one
+// before it; its lanes from `first` on are new (first is 0 otherwise). A
+// kernel that only overwrites its particles' outputs may ignore `first`: a
+// particle done twice gets the same bits twice. Each other particle: row(i).
+template <class Group, class Row>
+void gather_lanes(const BondSlots& s, Range block, Group&& lanes, Row&& row) {
   for_each_run(
       s, block,
       [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
-        for (std::size_t c0 = begin; c0 < end; c0 += kGatherChunk) {
-          const std::size_t count = std::min(kGatherChunk, end - c0);
-          const auto c = static_cast<std::ptrdiff_t>(c0);
-          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k)
-            entry(count, c0, static_cast<std::size_t>(c + pattern.partner_shift[k]),
-                  static_cast<std::size_t>(c + pattern.slot_shift[k]),
-                  pattern.partner_shift[k] > 0);
-          finish(c0, count);
+        if (end - begin < kLanes) {
+          for (std::size_t i = begin; i < end; ++i) row(i);
+          return;
+        }
+        for (std::size_t m = begin; m < end; m += kLanes) {
+          const std::size_t at = std::min(m, end - kLanes);
+          lanes(at, pattern, m - at);
         }
       },
       [&](std::size_t begin, std::size_t end) {

@@ -167,35 +167,31 @@ class CorrectedGradientModel {
   // Pass 2 on one block, serially (the step fuses it with the integration):
   // per entry, the stress term, then the hourglass force, as before.
   void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
-    double fx[kGatherChunk] = {}, fy[kGatherChunk] = {};
-    gather_rows(
+    gather_lanes(
         slots_, block,
-        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool owner) {
-          const double *sx = slot_[kTerm0] + s, *sy = slot_[kTerm1] + s;
-          const double *hx = slot_[kTerm2] + s, *hy = slot_[kTerm3] + s;
-          if (owner)
-            add_forces<true>(count, sx, sy, hx, hy, fx, fy);
-          else
-            add_forces<false>(count, sx, sy, hx, hy, fx, fy);
-        },
-        [&](std::size_t m, std::size_t count) {
-          for (std::size_t k = 0; k < count; ++k) {
-            p.fx[m + k] = fx[k];
-            p.fy[m + k] = fy[k];
-            p.torque[m + k] = 0.0;
-            fx[k] = fy[k] = 0.0;
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
+          Lanes fx{}, fy{};
+          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
+            const std::size_t s = m + pattern.slot_shift[k];
+            const auto at = [&](Field f) { return load_lanes(slot_[f] + s); };
+            if (pattern.partner_shift[k] > 0)
+              add_force<true>(fx, fy, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
+            else
+              add_force<false>(fx, fy, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
           }
+          store_lanes(&p.fx[m], fx);
+          store_lanes(&p.fy[m], fy);
+          store_lanes(&p.torque[m], Lanes{});
         },
         [&](std::size_t i) {
           double fxi = 0.0, fyi = 0.0;
           for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
             const std::size_t s = slots_.entry_slot[b];
+            const auto at = [&](Field f) { return slot_[f][s]; };
             if (bonds.neighbor[b] > i)
-              add_forces<true>(1, &slot_[kTerm0][s], &slot_[kTerm1][s], &slot_[kTerm2][s],
-                               &slot_[kTerm3][s], &fxi, &fyi);
+              add_force<true>(fxi, fyi, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
             else
-              add_forces<false>(1, &slot_[kTerm0][s], &slot_[kTerm1][s], &slot_[kTerm2][s],
-                                &slot_[kTerm3][s], &fxi, &fyi);
+              add_force<false>(fxi, fyi, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
           }
           p.fx[i] = fxi;
           p.fy[i] = fyi;
@@ -282,21 +278,16 @@ class CorrectedGradientModel {
   // (kTerm0..3, the same from both ends) in CSR order, for i in `block`.
   template <class Finish>
   void gather_tensor(const BondTable& bonds, Range block, Finish&& finish) const {
-    double t[4][kGatherChunk] = {};
-    gather_rows(
+    gather_lanes(
         slots_, block,
-        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool) {
-          for (std::size_t c = 0; c < 4; ++c) {
-            const double* __restrict term = slot_[kTerm0 + c] + s;
-            double* __restrict acc = t[c];
-            for (std::size_t m = 0; m < count; ++m) acc[m] += term[m];
-          }
-        },
-        [&](std::size_t m, std::size_t count) {
-          for (std::size_t k = 0; k < count; ++k) {
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
+          Lanes t[4] = {};
+          for (const std::ptrdiff_t shift : pattern.slot_shift)
+            for (std::size_t c = 0; c < 4; ++c)
+              t[c] += load_lanes(slot_[kTerm0 + c] + static_cast<std::ptrdiff_t>(m) + shift);
+          for (std::size_t k = first; k < kLanes; ++k) {  // finish may add: new lanes only
             const double ti[4] = {t[0][k], t[1][k], t[2][k], t[3][k]};
             finish(m + k, ti);
-            t[0][k] = t[1][k] = t[2][k] = t[3][k] = 0.0;
           }
         },
         [&](std::size_t i) {
@@ -400,17 +391,19 @@ class CorrectedGradientModel {
   }
 
   // fx += s, then fx += h g (the owner's terms), or both subtracted (the
-  // other end's terms are the owner's negated), for `count` particles.
-  template <bool Owner>
-  static void add_forces(std::size_t count, const double* __restrict sx,
-                         const double* __restrict sy, const double* __restrict hx,
-                         const double* __restrict hy, double* __restrict fx,
-                         double* __restrict fy) {
-    for (std::size_t m = 0; m < count; ++m) {
-      fx[m] = Owner ? fx[m] + sx[m] : fx[m] - sx[m];
-      fy[m] = Owner ? fy[m] + sy[m] : fy[m] - sy[m];
-      fx[m] = Owner ? fx[m] + hx[m] : fx[m] - hx[m];
-      fy[m] = Owner ? fy[m] + hy[m] : fy[m] - hy[m];
+  // other end's terms are the owner's negated). T: double or Lanes.
+  template <bool Owner, class T>
+  static void add_force(T& fx, T& fy, T sx, T sy, T hx, T hy) {
+    if constexpr (Owner) {
+      fx += sx;
+      fy += sy;
+      fx += hx;
+      fy += hy;
+    } else {
+      fx -= sx;
+      fy -= sy;
+      fx -= hx;
+      fy -= hy;
     }
   }
 

@@ -127,21 +127,24 @@ class PaperModelT {
 
   // Pass 2 on one block, serially (the step fuses it with the integration).
   void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
-    double fx[kGatherChunk] = {}, fy[kGatherChunk] = {}, torque[kGatherChunk] = {};
-    gather_rows(
+    gather_lanes(
         slots_, block,
-        [&](std::size_t count, std::size_t m, std::size_t j, std::size_t s, bool owner) {
-          with_owner(owner, [&](auto is_owner) {
-            add_bond_forces<is_owner()>(count, &p.pressure[m], &p.pressure[j], s, fx, fy, torque);
-          });
-        },
-        [&](std::size_t m, std::size_t count) {
-          for (std::size_t k = 0; k < count; ++k) {
-            p.fx[m + k] = fx[k];
-            p.fy[m + k] = fy[k];
-            p.torque[m + k] = 0.5 * torque[k];
-            fx[k] = fy[k] = torque[k] = 0.0;
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
+          Lanes fx{}, fy{}, torque{};
+          const Lanes pi = load_lanes(&p.pressure[m]);
+          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
+            const std::size_t s = m + pattern.slot_shift[k];
+            const auto at = [&](Field f) { return load_lanes(slot_[f] + s); };
+            const Lanes pj = load_lanes(&p.pressure[m + pattern.partner_shift[k]]);
+            with_owner(pattern.partner_shift[k] > 0, [&](auto is_owner) {
+              add_bond_force<is_owner()>(fx, fy, torque, pi, pj, at(kSpringCoef), at(kPressureCoef),
+                                         at(kRx), at(kRy), at(kUx), at(kUy), at(kInvLen),
+                                         EnergyConsistent ? at(kExtension) : Lanes{});
+            });
           }
+          store_lanes(&p.fx[m], fx);
+          store_lanes(&p.fy[m], fy);
+          store_lanes(&p.torque[m], 0.5 * torque);
         },
         [&](std::size_t i) {
           double fxi = 0.0, fyi = 0.0, ti = 0.0;
@@ -285,28 +288,21 @@ class PaperModelT {
   // Pass 1b: eps_i = sum of its bonds' strain terms in CSR order.
   void gather_strain(ParticleStore& p, const BondTable& bonds, Range block) const {
     const double* term = slot_[kStrainTerm];
-    double eps[kGatherChunk] = {};
-    const auto store = [&](std::size_t i, double e) {
-      p.strain[i] = e;
-      p.pressure[i] = -p.lambda[i] * e;
-    };
-    gather_rows(
+    gather_lanes(
         slots_, block,
-        [&](std::size_t count, std::size_t, std::size_t, std::size_t s, bool) {
-          const double* __restrict t = term + s;
-          for (std::size_t m = 0; m < count; ++m) eps[m] += t[m];
-        },
-        [&](std::size_t m, std::size_t count) {
-          for (std::size_t k = 0; k < count; ++k) {
-            store(m + k, eps[k]);
-            eps[k] = 0.0;
-          }
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
+          Lanes eps{};
+          for (const std::ptrdiff_t shift : pattern.slot_shift)
+            eps += load_lanes(term + static_cast<std::ptrdiff_t>(m) + shift);
+          store_lanes(&p.strain[m], eps);
+          store_lanes(&p.pressure[m], -load_lanes(&p.lambda[m]) * eps);
         },
         [&](std::size_t i) {
           double e = 0.0;
           for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
             e += term[slots_.entry_slot[b]];
-          store(i, e);
+          p.strain[i] = e;
+          p.pressure[i] = -p.lambda[i] * e;
         });
   }
 
@@ -314,23 +310,33 @@ class PaperModelT {
   // added to fx, fy, torque. The owner's r_ij and u_ij are stored; the other
   // end's are their negatives, so its force terms are the owner's negated:
   // bit for bit what that end computed for itself before.
-  template <bool Owner>
-  static void add_bond_force(double& fx, double& fy, double& torque, double pi, double pj, double k,
-                             double vc, double rx, double ry, double ux, double uy, double inv_len,
-                             double extension) {
-    const double c = vc * (pi + pj) * inv_len;
-    const double tx = k * ux - c * rx;
-    const double ty = k * uy - c * ry;
-    fx = Owner ? fx + tx : fx - tx;
-    fy = Owner ? fy + ty : fy - ty;
-    double bond_torque = k * bond_math::cross(rx, ry, ux, uy);
+  // T: double, or Lanes (eight bonds of eight particles, lane by lane).
+  template <bool Owner, class T>
+  static void add_bond_force(T& fx, T& fy, T& torque, T pi, T pj, T k, T vc, T rx, T ry, T ux, T uy,
+                             T inv_len, T extension) {
+    const T c = vc * (pi + pj) * inv_len;
+    const T tx = k * ux - c * rx;
+    const T ty = k * uy - c * ry;
+    if constexpr (Owner) {
+      fx += tx;
+      fy += ty;
+    } else {
+      fx -= tx;
+      fy -= ty;
+    }
+    T bond_torque = k * bond_math::cross(rx, ry, ux, uy);
     if constexpr (EnergyConsistent) {
       // u^s = u - (u . e) e
-      const double un = extension * inv_len;
-      const double gx = c * (ux - un * rx);
-      const double gy = c * (uy - un * ry);
-      fx = Owner ? fx - gx : fx + gx;
-      fy = Owner ? fy - gy : fy + gy;
+      const T un = extension * inv_len;
+      const T gx = c * (ux - un * rx);
+      const T gy = c * (uy - un * ry);
+      if constexpr (Owner) {
+        fx -= gx;
+        fy -= gy;
+      } else {
+        fx += gx;
+        fy += gy;
+      }
       bond_torque += c * bond_math::cross(ux, uy, rx, ry);
     }
     torque += bond_torque;
@@ -341,17 +347,6 @@ class PaperModelT {
     return 0.0;
   }
 
-  // add_bond_force() for `count` bonds in slots slot + m on particles
-  // i + m (pressures pi[m], partners' pj[m]), into fx, fy, torque[m].
-  template <bool Owner>
-  void add_bond_forces(std::size_t count, const double* pi, const double* pj, std::size_t slot,
-                       double* fx, double* fy, double* torque) const {
-    bond_forces<Owner>(count, pi, pj, slot_[kSpringCoef] + slot, slot_[kPressureCoef] + slot,
-                       slot_[kRx] + slot, slot_[kRy] + slot, slot_[kUx] + slot, slot_[kUy] + slot,
-                       slot_[kInvLen] + slot, EnergyConsistent ? slot_[kExtension] + slot : nullptr,
-                       fx, fy, torque);
-  }
-
   // Calls f(std::true_type) or f(std::false_type): the owner's or the other
   // end's instance of a kernel, chosen once per call, inlined.
   template <class F>
@@ -360,23 +355,6 @@ class PaperModelT {
       f(std::true_type{});
     else
       f(std::false_type{});
-  }
-
-  template <bool Owner>
-  static void bond_forces(std::size_t count, const double* __restrict pi,
-                          const double* __restrict pj, const double* __restrict k,
-                          const double* __restrict vc, const double* __restrict rx,
-                          const double* __restrict ry, const double* __restrict ux,
-                          const double* __restrict uy, const double* __restrict inv_len,
-                          const double* __restrict extension, double* __restrict fx,
-                          double* __restrict fy, double* __restrict torque) {
-    // Inlined into the gather, GCC loses the restrict qualifiers of the
-    // energy-consistent instance and leaves it scalar (2.6x slower): the
-    // bonds m are independent, say so.
-#pragma GCC ivdep
-    for (std::size_t m = 0; m < count; ++m)
-      add_bond_force<Owner>(fx[m], fy[m], torque[m], pi[m], pj[m], k[m], vc[m], rx[m], ry[m], ux[m],
-                            uy[m], inv_len[m], EnergyConsistent ? extension[m] : 0.0);
   }
 
   double volume_ = 0;

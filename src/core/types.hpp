@@ -10,7 +10,9 @@ namespace mpsolid {
 inline constexpr int kDim = 2;
 
 // The z component of a x b for in-plane vectors (torques, angular momenta).
-inline double cross(double ax, double ay, double bx, double by) {
+// T: double, or a vector of lanes (kernels/bond_slots.hpp) computing it lane-wise.
+template <class T>
+inline T cross(T ax, T ay, T bx, T by) {
   return ax * by - ay * bx;
 }
 
