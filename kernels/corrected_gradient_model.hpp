@@ -136,10 +136,6 @@ class CorrectedGradientModel {
 
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
-    // Every bond's terms of G (all owners, whatever `range` is), then F.
-    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
-      compute_gradient_slots(p, {b, e});
-    });
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_deformation_gradient(p, bonds, {b, e});
     });
@@ -246,22 +242,13 @@ class CorrectedGradientModel {
     return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
   }
 
-  // Each owned bond's terms wl_ij r_ij (x) r0_ij of G, the same from both
-  // ends (r and r0 both change sign).
-  void compute_gradient_slots(const ParticleStore& p, Range owners) {
-    const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
-    const auto terms = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
-      gradient_terms(count, &p.x[i], &p.y[i], &p.x[j], &p.y[j], at(kR0x, s), at(kR0y, s),
-                     at(kWl, s), at(kTerm0, s), at(kTerm1, s), at(kTerm2, s), at(kTerm3, s));
-    };
-    for_each_owned_slot(slots_, owners, 0, terms,
-                        [&](std::size_t s, std::size_t i, std::size_t j) { terms(1, s, i, j); });
-  }
-
-  // Pass 1: G_i = sum of its slots' G terms in CSR order; F_i = G_i A_i^-1,
-  // J_i, the law's stress and S_i A_i^-1.
+  // Pass 1: G_i = sum over its bonds of wl_ij r_ij (x) r0_ij in CSR order;
+  // F_i = G_i A_i^-1, J_i, the law's stress and S_i A_i^-1. Each term is
+  // computed as the bond's owner (its lower end) sees it, r from the owner
+  // to the other end and r0 from its slot: the same bits from both ends (r
+  // and r0 both change sign), with no pass that stores them.
   void gather_deformation_gradient(ParticleStore& p, const BondTable& bonds, Range block) {
-    gather_tensor(bonds, block, [&](std::size_t i, const double* g) {
+    const auto finish = [&](std::size_t i, const double* g) {
       const double* ai = &a_inv_[4 * i];
       double* f = &def_grad_[4 * i];
       tensor2::times_a_inv(g, ai, f);
@@ -271,7 +258,44 @@ class CorrectedGradientModel {
       for (double& v : stress) v *= volume_;  // S = V P
       tensor2::times_a_inv(stress, ai, &stress_a_[4 * i]);
       jacobian_[i] = jac;
-    });
+    };
+    gather_lanes(
+        slots_, block,
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
+          const Lanes xi = load_lanes(&p.x[m]), yi = load_lanes(&p.y[m]);
+          Lanes g[4] = {};
+          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
+            const std::size_t s = m + pattern.slot_shift[k], j = m + pattern.partner_shift[k];
+            const Lanes xj = load_lanes(&p.x[j]), yj = load_lanes(&p.y[j]);
+            const bool owner = pattern.partner_shift[k] > 0;
+            add_gradient_terms(g, owner ? xj - xi : xi - xj, owner ? yj - yi : yi - yj,
+                               load_lanes(slot_[kWl] + s), load_lanes(slot_[kR0x] + s),
+                               load_lanes(slot_[kR0y] + s));
+          }
+          for (std::size_t k = first; k < kLanes; ++k) {
+            const double gk[4] = {g[0][k], g[1][k], g[2][k], g[3][k]};
+            finish(m + k, gk);
+          }
+        },
+        [&](std::size_t i) {
+          double g[4] = {0, 0, 0, 0};
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const std::size_t j = bonds.neighbor[b], s = slots_.entry_slot[b];
+            const std::size_t owner = std::min(i, j), other = std::max(i, j);
+            add_gradient_terms(g, p.x[other] - p.x[owner], p.y[other] - p.y[owner], slot_[kWl][s],
+                               slot_[kR0x][s], slot_[kR0y][s]);
+          }
+          finish(i, g);
+        });
+  }
+
+  // G += wl r (x) r0 (T: double or Lanes).
+  template <class T>
+  static void add_gradient_terms(T* g, T rx, T ry, T wl, T r0x, T r0y) {
+    g[0] += wl * rx * r0x;
+    g[1] += wl * rx * r0y;
+    g[2] += wl * ry * r0x;
+    g[3] += wl * ry * r0y;
   }
 
   // finish(i, t) with t_i = the sum of particle i's slots' four terms
@@ -296,21 +320,6 @@ class CorrectedGradientModel {
             for (std::size_t c = 0; c < 4; ++c) ti[c] += slot_[kTerm0 + c][slots_.entry_slot[b]];
           finish(i, ti);
         });
-  }
-
-  static void gradient_terms(std::size_t count, const double* __restrict xi,
-                             const double* __restrict yi, const double* __restrict xj,
-                             const double* __restrict yj, const double* __restrict r0x,
-                             const double* __restrict r0y, const double* __restrict wl,
-                             double* __restrict t0, double* __restrict t1, double* __restrict t2,
-                             double* __restrict t3) {
-    for (std::size_t m = 0; m < count; ++m) {
-      const double rx = xj[m] - xi[m], ry = yj[m] - yi[m];
-      t0[m] = wl[m] * rx * r0x[m];
-      t1[m] = wl[m] * rx * r0y[m];
-      t2[m] = wl[m] * ry * r0x[m];
-      t3[m] = wl[m] * ry * r0y[m];
-    }
   }
 
   // Each owned bond's hourglass gap g_ij = r_ij - (F_i + F_j) r0_ij / 2 and
@@ -416,8 +425,9 @@ class CorrectedGradientModel {
   BondSlots slots_;
   // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij), the hourglass
   // gap, and four terms that each pass reuses in turn (few arrays: they
-  // stay in cache on larger lattices): G's, then Q's, then the force's
-  // (stress term x, y, hourglass force x, y).
+  // stay in cache on larger lattices): Q's, then the force's (stress term
+  // x, y, hourglass force x, y). G's terms are not stored: the gather
+  // computes them.
   enum Field : std::size_t {
     kR0x,
     kR0y,
