@@ -21,13 +21,15 @@
 // "frozen"; it loses about 0.5 % of the external work on the 11.2 kN rod.
 //
 // Each bond once (kernels/bond_slots.hpp): after pass 1, the bond's owner
-// computes its hourglass gap g_ij and the four terms h g (x) r0 of Q into its
-// slot; after pass 1b, its stress term wl (S_i A_i^-1 + S_j A_j^-1) r0 and
-// hourglass force h g. Under i <-> j, g and r0 change sign bit for bit, so
-// the Q terms are the same from both ends and the force terms are negated:
-// each particle gathers its slots in CSR order and gets the bits it computed
-// for itself before. The force pass then reads no position: a block's forces
-// and its integration run with no barrier between.
+// computes its hourglass gap g_ij into its slot; after pass 1b, its stress
+// term wl (S_i A_i^-1 + S_j A_j^-1) r0 and hourglass force h g. Under
+// i <-> j, r, g and r0 change sign bit for bit, so the terms of G and Q
+// (products of two of them) are the same from both ends and the force terms
+// are negated: the gathers of G and Q compute their terms from the owner's
+// values, the force gather reads its slots, each particle in CSR order, and
+// every particle gets the bits it computed for itself before. The force pass
+// then reads no position: a block's forces and its integration run with no
+// barrier between.
 //
 // A Law (kernels/finite_strain_model.hpp, kernels/linear_elastic_model.hpp)
 // supplies: name (also its case section), rotation_invariant, and
@@ -298,38 +300,13 @@ class CorrectedGradientModel {
     g[3] += wl * ry * r0y;
   }
 
-  // finish(i, t) with t_i = the sum of particle i's slots' four terms
-  // (kTerm0..3, the same from both ends) in CSR order, for i in `block`.
-  template <class Finish>
-  void gather_tensor(const BondTable& bonds, Range block, Finish&& finish) const {
-    gather_lanes(
-        slots_, block,
-        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
-          Lanes t[4] = {};
-          for (const std::ptrdiff_t shift : pattern.slot_shift)
-            for (std::size_t c = 0; c < 4; ++c)
-              t[c] += load_lanes(slot_[kTerm0 + c] + static_cast<std::ptrdiff_t>(m) + shift);
-          for (std::size_t k = first; k < kLanes; ++k) {  // finish may add: new lanes only
-            const double ti[4] = {t[0][k], t[1][k], t[2][k], t[3][k]};
-            finish(m + k, ti);
-          }
-        },
-        [&](std::size_t i) {
-          double ti[4] = {0, 0, 0, 0};
-          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
-            for (std::size_t c = 0; c < 4; ++c) ti[c] += slot_[kTerm0 + c][slots_.entry_slot[b]];
-          finish(i, ti);
-        });
-  }
-
-  // Each owned bond's hourglass gap g_ij = r_ij - (F_i + F_j) r0_ij / 2 and
-  // its Q terms (-1/2 h_ij) g_ij (x) r0_ij, the same from both ends.
+  // Each owned bond's hourglass gap g_ij = r_ij - (F_i + F_j) r0_ij / 2, as
+  // its owner sees it (the other end's is -g bit for bit).
   void compute_gap_slots(const ParticleStore& p, Range owners) {
     const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
     const auto gaps = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
       gap_terms(count, &p.x[i], &p.y[i], &p.x[j], &p.y[j], &def_grad_[4 * i], &def_grad_[4 * j],
-                at(kR0x, s), at(kR0y, s), at(kHourglass, s), at(kGapX, s), at(kGapY, s),
-                at(kTerm0, s), at(kTerm1, s), at(kTerm2, s), at(kTerm3, s));
+                at(kR0x, s), at(kR0y, s), at(kGapX, s), at(kGapY, s));
     };
     for_each_owned_slot(slots_, owners, 0,
                         gaps,  // walls' own bonds too: their Q enters their neighbours' force
@@ -350,13 +327,49 @@ class CorrectedGradientModel {
                         [&](std::size_t s, std::size_t i, std::size_t j) { terms(1, s, i, j); });
   }
 
-  // Pass 1b: Q_i = sum of its slots' Q terms in CSR order, S_i A_i^-1 += Q_i A_i^-1.
+  // Pass 1b: Q_i = sum over its bonds of (-1/2 h_ij) g_ij (x) r0_ij in CSR
+  // order, from g and r0 as the owner stored them (both change sign from
+  // the other end: the same bits), then S_i A_i^-1 += Q_i A_i^-1.
   void gather_hourglass_stress(const BondTable& bonds, Range block) {
-    gather_tensor(bonds, block, [&](std::size_t i, const double* q) {
+    const auto finish = [&](std::size_t i, const double* q) {
       double qa[4];
       tensor2::times_a_inv(q, &a_inv_[4 * i], qa);
       for (std::size_t k = 0; k < 4; ++k) stress_a_[4 * i + k] += qa[k];
-    });
+    };
+    gather_lanes(
+        slots_, block,
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
+          Lanes q[4] = {};
+          for (const std::ptrdiff_t shift : pattern.slot_shift) {
+            const auto at = [&](Field f) {
+              return load_lanes(slot_[f] + static_cast<std::ptrdiff_t>(m) + shift);
+            };
+            add_hourglass_terms(q, at(kHourglass), at(kGapX), at(kGapY), at(kR0x), at(kR0y));
+          }
+          for (std::size_t k = first; k < kLanes; ++k) {  // finish adds: new lanes only
+            const double qk[4] = {q[0][k], q[1][k], q[2][k], q[3][k]};
+            finish(m + k, qk);
+          }
+        },
+        [&](std::size_t i) {
+          double q[4] = {0, 0, 0, 0};
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const std::size_t s = slots_.entry_slot[b];
+            add_hourglass_terms(q, slot_[kHourglass][s], slot_[kGapX][s], slot_[kGapY][s],
+                                slot_[kR0x][s], slot_[kR0y][s]);
+          }
+          finish(i, q);
+        });
+  }
+
+  // Q += (-1/2 h) g (x) r0 (T: double or Lanes).
+  template <class T>
+  static void add_hourglass_terms(T* q, T h, T gx, T gy, T r0x, T r0y) {
+    const T half_h = -0.5 * h;
+    q[0] += half_h * gx * r0x;
+    q[1] += half_h * gx * r0y;
+    q[2] += half_h * gy * r0x;
+    q[3] += half_h * gy * r0y;
   }
 
   // gap slots for `count` bonds (i + m, j + m) into slots s + m; F rows of 4.
@@ -364,21 +377,12 @@ class CorrectedGradientModel {
                         const double* __restrict xj, const double* __restrict yj,
                         const double* __restrict fi, const double* __restrict fj,
                         const double* __restrict r0x, const double* __restrict r0y,
-                        const double* __restrict h, double* __restrict gx, double* __restrict gy,
-                        double* __restrict q0, double* __restrict q1, double* __restrict q2,
-                        double* __restrict q3) {
+                        double* __restrict gx, double* __restrict gy) {
     for (std::size_t m = 0; m < count; ++m) {
       const double* a = fi + 4 * m;
       const double* b = fj + 4 * m;
-      const double x = (xj[m] - xi[m]) - 0.5 * ((a[0] + b[0]) * r0x[m] + (a[1] + b[1]) * r0y[m]);
-      const double y = (yj[m] - yi[m]) - 0.5 * ((a[2] + b[2]) * r0x[m] + (a[3] + b[3]) * r0y[m]);
-      const double half_h = -0.5 * h[m];
-      gx[m] = x;
-      gy[m] = y;
-      q0[m] = half_h * x * r0x[m];
-      q1[m] = half_h * x * r0y[m];
-      q2[m] = half_h * y * r0x[m];
-      q3[m] = half_h * y * r0y[m];
+      gx[m] = (xj[m] - xi[m]) - 0.5 * ((a[0] + b[0]) * r0x[m] + (a[1] + b[1]) * r0y[m]);
+      gy[m] = (yj[m] - yi[m]) - 0.5 * ((a[2] + b[2]) * r0x[m] + (a[3] + b[3]) * r0y[m]);
     }
   }
 
@@ -424,10 +428,8 @@ class CorrectedGradientModel {
   std::vector<double> jacobian_;  // J_i
   BondSlots slots_;
   // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij), the hourglass
-  // gap, and four terms that each pass reuses in turn (few arrays: they
-  // stay in cache on larger lattices): Q's, then the force's (stress term
-  // x, y, hourglass force x, y). G's terms are not stored: the gather
-  // computes them.
+  // gap, and the force pass's four terms (stress term x, y, hourglass force
+  // x, y). G's and Q's terms are not stored: their gathers compute them.
   enum Field : std::size_t {
     kR0x,
     kR0y,
