@@ -40,6 +40,9 @@ void ThreadGovernor::conclude(bool better) {
     ++changes_;
   }
   if (trial_ > base_) retry_after_ = better ? kFirstRetry : std::min(2 * retry_after_, kLastRetry);
+  if (trial_ < base_)
+    retry_down_after_ =
+        better ? kFirstRetry : std::clamp(2 * retry_down_after_, kFirstRetry, kLastRetry);
   stage_ = Stage::steady;
   windows_since_change_ = 0;
 }
@@ -74,7 +77,10 @@ void ThreadGovernor::end_window() {
     resize(size);
     stage_ = Stage::trial;
   };
-  if (current_ > 1 && wait_share > kWaitShare)
+  // One thread fewer when the threads wait, and now and then anyway: where
+  // two threads of one process slow each other down (as on some virtual
+  // machines), a team can be slower than a smaller one while hardly waiting.
+  if (current_ > 1 && (wait_share > kWaitShare || windows_since_change_ >= retry_down_after_))
     start_trial(current_ - 1);
   else if (current_ < requested_ && windows_since_change_ >= retry_after_)
     start_trial(current_ + 1);

@@ -5,20 +5,24 @@
 // at every barrier, and fewer threads can be faster than more.
 //
 // It measures windows of about a quarter of a second (the first judged one
-// a tenth). When the threads spent more than a fifth of their time waiting,
-// it runs one shorter window (a tenth of a second) with one thread fewer,
-// then one more with the current size again, and keeps the smaller team
-// only if it beat both neighbouring windows by 5 % (the cost of a step
-// drifts as a run goes on: a trial must beat the windows on both sides of
-// it), or at once if it ran 1.5x as fast as the window before it (no drift
-// does that). Below the
-// requested size it tries one thread more the same way, after 1 s, then
-// after twice as long each time that fails (at most 16 s). The first
-// window, a twentieth of a second, is not judged (start-up). So with one
-// other busy process on 2 cores, where 2 threads ran at about 0.6 of 1
-// thread's speed, a run spends about 0.15 s at 2 threads at the start and
-// a tenth of a second per retry. On an idle machine the threads hardly wait and the requested size
-// is kept. --fixed-threads turns it off.
+// a tenth). After the first judged window, and whenever the threads spent
+// more than a fifth of their time waiting, it runs one shorter window (a
+// tenth of a second) with one thread fewer, then one more with the current
+// size again, and keeps the smaller team only if it beat both neighbouring
+// windows by 5 % (the cost of a step drifts as a run goes on: a trial must
+// beat the windows on both sides of it), or at once if it ran 1.5x as fast
+// as the window before it (no drift does that). A smaller team is tried
+// again after 1 s, then after twice as long each time that fails (at most
+// 16 s), waiting or not: threads can be slow without waiting (on some
+// virtual machines two threads of one process run at half speed each, and
+// 2 threads were slower than 1). Below the requested size it tries one
+// thread more the same way. The first window, a twentieth of a second, is
+// not judged (start-up). So with one other busy process on 2 cores, where 2
+// threads ran at about 0.6 of 1 thread's speed, a run spends about 0.15 s
+// at 2 threads at the start and a tenth of a second per retry. On an idle
+// machine where more threads are faster, the trials cost a few tenths of a
+// second of slower running in the first minute, then one a quarter-minute.
+// --fixed-threads turns it off.
 #include <cstdint>
 #include <map>
 
@@ -76,6 +80,7 @@ class ThreadGovernor {
   double rate_before_ = 0, rate_trial_ = 0;
   int windows_since_change_ = 0;
   int retry_after_ = kFirstRetry;
+  int retry_down_after_ = 1;  // windows before trying one thread fewer anyway
   int changes_ = 0;
   std::map<int, double> seconds_at_;
 };
