@@ -46,8 +46,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4096));
   bool fixed_threads = false;
   const char* fixed_help =
-      "keep --threads for the whole run (by default a busy machine, where waiting threads make "
-      "the run slower, gets fewer; the results are the same bits either way)";
+      "keep --threads for the whole run (by default the run tries fewer now and then and keeps "
+      "them where they are faster, as on a busy machine; the results are the same bits either "
+      "way)";
   run->add_flag("--fixed-threads", fixed_threads, fixed_help);
   run->add_option("--set", overrides, "override a case key: --set time.end=0.002")
       ->allow_extra_args(false)

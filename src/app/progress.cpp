@@ -43,7 +43,7 @@ void Progress::update(std::int64_t step, int team) {
                100.0 * static_cast<double>(step) / static_cast<double>(total_), rate, eta);
   // Waiting threads: an imbalance, or cores shared with other work.
   if (team > 1) std::fprintf(stderr, "  threads waiting %3.0f %%", 100.0 * wait_share);
-  if (team < threads_) std::fprintf(stderr, "  (%d of %d threads: busy machine)", team, threads_);
+  if (team < threads_) std::fprintf(stderr, "  (%d of %d threads: faster here)", team, threads_);
   std::fprintf(stderr, "   ");
   std::fflush(stderr);
   drawn_ = true;

@@ -364,7 +364,7 @@ else
   show omp_one
 fi
 # Waiting threads and the team sizes used are in run.json; --fixed-threads
-# keeps the requested size (the governor may use fewer on a busy machine).
+# keeps the requested size (the governor may use fewer where they are faster).
 mp fixed_threads run "$CASE" --set time.end=2e-5 --out "$TMP/fixed_threads" --threads 2 --fixed-threads
 if [[ $rc -eq 0 ]] && python3 - "$TMP/fixed_threads/run.json" <<'PY'
 import json, sys
