@@ -21,15 +21,13 @@
 // "frozen"; it loses about 0.5 % of the external work on the 11.2 kN rod.
 //
 // Each bond once (kernels/bond_slots.hpp): after pass 1, the bond's owner
-// computes its hourglass gap g_ij into its slot; after pass 1b, its stress
-// term wl (S_i A_i^-1 + S_j A_j^-1) r0 and hourglass force h g. Under
-// i <-> j, r, g and r0 change sign bit for bit, so the terms of G and Q
-// (products of two of them) are the same from both ends and the force terms
-// are negated: the gathers of G and Q compute their terms from the owner's
-// values, the force gather reads its slots, each particle in CSR order, and
-// every particle gets the bits it computed for itself before. The force pass
-// then reads no position: a block's forces and its integration run with no
-// barrier between.
+// computes its hourglass gap g_ij into its slot. Under i <-> j, r, g and r0
+// change sign bit for bit, so the terms of G and Q (products of two of them)
+// are the same from both ends and the force terms (linear in r0 and g, with
+// S_i + S_j the same sum from either end) are negated: every gather computes
+// its terms from the owner's r0 and g, each particle in CSR order, and gets
+// the bits it computed for itself before. The force pass reads no position:
+// a block's forces and its integration run with no barrier between.
 //
 // A Law (kernels/finite_strain_model.hpp, kernels/linear_elastic_model.hpp)
 // supplies: name (also its case section), rotation_invariant, and
@@ -41,6 +39,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "kernels/bond_math.hpp"
@@ -91,6 +90,7 @@ class CorrectedGradientModel {
     const double n0 = number_density(bonds);
     a_inv_.assign(4 * n, 0.0);
     def_grad_.assign(4 * n, 0.0);
+    stress_stride_ = n;
     stress_a_.assign(4 * n, 0.0);
     jacobian_.assign(n, 1.0);
     std::vector<double> wl_of(bonds.entry_count());
@@ -149,10 +149,6 @@ class CorrectedGradientModel {
       parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
         gather_hourglass_stress(bonds, {b, e});
       });
-    // The force terms of the bonds that reach a moving particle.
-    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
-      compute_force_slots(p, {b, e});
-    });
   }
 
   // Pass 2: the force; no torque (needs pass 1 at the current state).
@@ -163,19 +159,29 @@ class CorrectedGradientModel {
   }
 
   // Pass 2 on one block, serially (the step fuses it with the integration):
-  // per entry, the stress term, then the hourglass force, as before.
+  // per entry, the bond's stress term wl ((S_i + S_j) A^-1) r0 and hourglass
+  // force h g as its owner computes them (r0 and g from the slot; S_i + S_j
+  // is the same sum from either end), added by the owner and subtracted by
+  // the other end, in CSR order.
   void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
+    const auto stress_a = [&](std::size_t c) { return &stress_a_[c * stress_stride_]; };
     gather_lanes(
         slots_, block,
         [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
-          Lanes fx{}, fy{};
+          Lanes fx{}, fy{}, si[4];
+          for (std::size_t c = 0; c < 4; ++c) si[c] = load_lanes(stress_a(c) + m);
           for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
-            const std::size_t s = m + pattern.slot_shift[k];
+            const std::size_t s = m + pattern.slot_shift[k], j = m + pattern.partner_shift[k];
             const auto at = [&](Field f) { return load_lanes(slot_[f] + s); };
+            const auto sum = [&](std::size_t c) { return si[c] + load_lanes(stress_a(c) + j); };
+            const auto add = [&](auto owner) {
+              add_bond_force<owner()>(fx, fy, sum(0), sum(1), sum(2), sum(3), at(kWl), at(kR0x),
+                                      at(kR0y), at(kHourglass), at(kGapX), at(kGapY));
+            };
             if (pattern.partner_shift[k] > 0)
-              add_force<true>(fx, fy, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
+              add(std::true_type{});
             else
-              add_force<false>(fx, fy, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
+              add(std::false_type{});
           }
           store_lanes(&p.fx[m], fx);
           store_lanes(&p.fy[m], fy);
@@ -184,12 +190,17 @@ class CorrectedGradientModel {
         [&](std::size_t i) {
           double fxi = 0.0, fyi = 0.0;
           for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-            const std::size_t s = slots_.entry_slot[b];
+            const std::size_t j = bonds.neighbor[b], s = slots_.entry_slot[b];
             const auto at = [&](Field f) { return slot_[f][s]; };
-            if (bonds.neighbor[b] > i)
-              add_force<true>(fxi, fyi, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
+            const auto sum = [&](std::size_t c) { return stress_a(c)[i] + stress_a(c)[j]; };
+            const auto add = [&](auto owner) {
+              add_bond_force<owner()>(fxi, fyi, sum(0), sum(1), sum(2), sum(3), at(kWl), at(kR0x),
+                                      at(kR0y), at(kHourglass), at(kGapX), at(kGapY));
+            };
+            if (j > i)
+              add(std::true_type{});
             else
-              add_force<false>(fxi, fyi, at(kTerm0), at(kTerm1), at(kTerm2), at(kTerm3));
+              add(std::false_type{});
           }
           p.fx[i] = fxi;
           p.fy[i] = fyi;
@@ -258,7 +269,9 @@ class CorrectedGradientModel {
       double stress[4];
       Law::piola(f, jac, p.lambda[i], p.mu[i], stress, p.strain[i], p.pressure[i]);
       for (double& v : stress) v *= volume_;  // S = V P
-      tensor2::times_a_inv(stress, ai, &stress_a_[4 * i]);
+      double stress_a[4];
+      tensor2::times_a_inv(stress, ai, stress_a);
+      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * stress_stride_ + i] = stress_a[c];
       jacobian_[i] = jac;
     };
     gather_lanes(
@@ -313,20 +326,6 @@ class CorrectedGradientModel {
                         [&](std::size_t s, std::size_t i, std::size_t j) { gaps(1, s, i, j); });
   }
 
-  // Each owned bond's stress term wl ((S_i + S_j) A^-1 parts) r0 and
-  // hourglass force h g, seen from the owner. Bonds between two walls are
-  // skipped: no moving particle reads them.
-  void compute_force_slots(const ParticleStore& p, Range owners) {
-    const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
-    const auto terms = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
-      force_terms(count, &stress_a_[4 * i], &stress_a_[4 * j], at(kR0x, s), at(kR0y, s), at(kWl, s),
-                  at(kHourglass, s), at(kGapX, s), at(kGapY, s), at(kTerm0, s), at(kTerm1, s),
-                  at(kTerm2, s), at(kTerm3, s));
-    };
-    for_each_owned_slot(slots_, owners, p.walls.end, terms,
-                        [&](std::size_t s, std::size_t i, std::size_t j) { terms(1, s, i, j); });
-  }
-
   // Pass 1b: Q_i = sum over its bonds of (-1/2 h_ij) g_ij (x) r0_ij in CSR
   // order, from g and r0 as the owner stored them (both change sign from
   // the other end: the same bits), then S_i A_i^-1 += Q_i A_i^-1.
@@ -334,7 +333,7 @@ class CorrectedGradientModel {
     const auto finish = [&](std::size_t i, const double* q) {
       double qa[4];
       tensor2::times_a_inv(q, &a_inv_[4 * i], qa);
-      for (std::size_t k = 0; k < 4; ++k) stress_a_[4 * i + k] += qa[k];
+      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * stress_stride_ + i] += qa[c];
     };
     gather_lanes(
         slots_, block,
@@ -386,21 +385,14 @@ class CorrectedGradientModel {
     }
   }
 
-  // force slots for `count` bonds; (S A^-1) rows of 4.
-  static void force_terms(std::size_t count, const double* __restrict pai,
-                          const double* __restrict paj, const double* __restrict r0x,
-                          const double* __restrict r0y, const double* __restrict wl,
-                          const double* __restrict h, const double* __restrict gx,
-                          const double* __restrict gy, double* __restrict sx, double* __restrict sy,
-                          double* __restrict hx, double* __restrict hy) {
-    for (std::size_t m = 0; m < count; ++m) {
-      const double* a = pai + 4 * m;
-      const double* b = paj + 4 * m;
-      sx[m] = wl[m] * ((a[0] + b[0]) * r0x[m] + (a[1] + b[1]) * r0y[m]);
-      sy[m] = wl[m] * ((a[2] + b[2]) * r0x[m] + (a[3] + b[3]) * r0y[m]);
-      hx[m] = h[m] * gx[m];
-      hy[m] = h[m] * gy[m];
-    }
+  // One bond's stress term wl (s r0) (s = (S_i + S_j) A^-1, row-major) and
+  // hourglass force h g, added to the owner's force or subtracted from the
+  // other end's. T: double or Lanes.
+  template <bool Owner, class T>
+  static void add_bond_force(T& fx, T& fy, T s0, T s1, T s2, T s3, T wl, T r0x, T r0y, T h, T gx,
+                             T gy) {
+    add_force<Owner>(fx, fy, wl * (s0 * r0x + s1 * r0y), wl * (s2 * r0x + s3 * r0y), h * gx,
+                     h * gy);
   }
 
   // fx += s, then fx += h g (the owner's terms), or both subtracted (the
@@ -424,25 +416,14 @@ class CorrectedGradientModel {
   bool consistent_hourglass_ = false;
   std::vector<double> a_inv_;     // A_i^-1, 4 per particle
   std::vector<double> def_grad_;  // F_i, 4 per particle
-  std::vector<double> stress_a_;  // (S_i + Q_i) A_i^-1, 4 per particle
+  std::vector<double> stress_a_;  // (S_i + Q_i) A_i^-1 by component: c * stress_stride_ + i
+  std::size_t stress_stride_ = 0;
   std::vector<double> jacobian_;  // J_i
   BondSlots slots_;
-  // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij), the hourglass
-  // gap, and the force pass's four terms (stress term x, y, hourglass force
-  // x, y). G's and Q's terms are not stored: their gathers compute them.
-  enum Field : std::size_t {
-    kR0x,
-    kR0y,
-    kWl,
-    kHourglass,
-    kGapX,
-    kGapY,
-    kTerm0,
-    kTerm1,
-    kTerm2,
-    kTerm3,
-    kFields
-  };
+  // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij) and the
+  // hourglass gap. The terms of G, Q and the force are not stored: their
+  // gathers compute them.
+  enum Field : std::size_t { kR0x, kR0y, kWl, kHourglass, kGapX, kGapY, kFields };
   SlotArrays slot_;
 };
 
