@@ -140,6 +140,18 @@ inline void store_lanes(double* to, Lanes v) {
   std::memcpy(to, &v, sizeof v);
 }
 
+// Slot data larger than this comes from memory, where a gather's hundred
+// or so streams (a dozen entries times its fields) are more than the
+// hardware prefetchers follow: its gathers then prefetch each stream a few
+// groups ahead. Smaller data stays in the caches, where prefetches only cost.
+inline constexpr std::size_t kPrefetchAboveBytes = std::size_t{24} << 20;
+inline constexpr std::size_t kPrefetchAhead = 8 * kLanes;  // values ahead
+template <bool Prefetch>
+inline Lanes load_lanes_ahead(const double* from) {
+  if constexpr (Prefetch) __builtin_prefetch(from + kPrefetchAhead);
+  return load_lanes(from);
+}
+
 // A gather over the particles of `block`, each adding its bonds in CSR
 // order. On pattern runs of at least kLanes particles, kLanes particles at a
 // time: lanes(m, pattern, first) for particles m .. m + kLanes - 1, whose

@@ -58,6 +58,7 @@ class PaperModelT {
       : volume_(bonds.geometry.volume), slots_(make_bond_slots(bonds)) {
     const EntryCoefficients c = entry_coefficients(p, bonds);
     slot_ = SlotArrays(kFields, slots_.slot_count());
+    prefetch_ = kFields * slots_.slot_count() * sizeof(double) > kPrefetchAboveBytes;
     const auto fill = [&](Field f, const std::vector<double>& per_entry) {
       fill_slot_array(slots_, bonds, per_entry, slot_[f]);
     };
@@ -125,42 +126,15 @@ class PaperModelT {
     });
   }
 
+  // Whether the force gather prefetches (the slot data exceed kPrefetchAboveBytes).
+  bool prefetches() const { return prefetch_; }
+
   // Pass 2 on one block, serially (the step fuses it with the integration).
   void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
-    gather_lanes(
-        slots_, block,
-        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
-          Lanes fx{}, fy{}, torque{};
-          const Lanes pi = load_lanes(&p.pressure[m]);
-          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
-            const std::size_t s = m + pattern.slot_shift[k];
-            const auto at = [&](Field f) { return load_lanes(slot_[f] + s); };
-            const Lanes pj = load_lanes(&p.pressure[m + pattern.partner_shift[k]]);
-            with_owner(pattern.partner_shift[k] > 0, [&](auto is_owner) {
-              add_bond_force<is_owner()>(fx, fy, torque, pi, pj, at(kSpringCoef), at(kPressureCoef),
-                                         at(kRx), at(kRy), at(kUx), at(kUy), at(kInvLen),
-                                         EnergyConsistent ? at(kExtension) : Lanes{});
-            });
-          }
-          store_lanes(&p.fx[m], fx);
-          store_lanes(&p.fy[m], fy);
-          store_lanes(&p.torque[m], 0.5 * torque);
-        },
-        [&](std::size_t i) {
-          double fxi = 0.0, fyi = 0.0, ti = 0.0;
-          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-            const std::size_t j = bonds.neighbor[b], s = slots_.entry_slot[b];
-            with_owner(j > i, [&](auto is_owner) {
-              add_bond_force<is_owner()>(fxi, fyi, ti, p.pressure[i], p.pressure[j],
-                                         slot_[kSpringCoef][s], slot_[kPressureCoef][s],
-                                         slot_[kRx][s], slot_[kRy][s], slot_[kUx][s], slot_[kUy][s],
-                                         slot_[kInvLen][s], extension_at(s));
-            });
-          }
-          p.fx[i] = fxi;
-          p.fy[i] = fyi;
-          p.torque[i] = 0.5 * ti;
-        });
+    if (prefetch_)
+      forces_block<true>(p, bonds, block);
+    else
+      forces_block<false>(p, bonds, block);
   }
 
   // Strain energy of particle i (MODEL.md section 4b): its share of
@@ -214,6 +188,45 @@ class PaperModelT {
   }
 
  private:
+  // Pass 2 on one block (prefetching the slots' streams or not).
+  template <bool Prefetch>
+  void forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
+    gather_lanes(
+        slots_, block,
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
+          Lanes fx{}, fy{}, torque{};
+          const Lanes pi = load_lanes(&p.pressure[m]);
+          for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
+            const std::size_t s = m + pattern.slot_shift[k];
+            const auto at = [&](Field f) { return load_lanes_ahead<Prefetch>(slot_[f] + s); };
+            const Lanes pj = load_lanes(&p.pressure[m + pattern.partner_shift[k]]);
+            with_owner(pattern.partner_shift[k] > 0, [&](auto is_owner) {
+              add_bond_force<is_owner()>(fx, fy, torque, pi, pj, at(kSpringCoef), at(kPressureCoef),
+                                         at(kRx), at(kRy), at(kUx), at(kUy), at(kInvLen),
+                                         EnergyConsistent ? at(kExtension) : Lanes{});
+            });
+          }
+          store_lanes(&p.fx[m], fx);
+          store_lanes(&p.fy[m], fy);
+          store_lanes(&p.torque[m], 0.5 * torque);
+        },
+        [&](std::size_t i) {
+          double fxi = 0.0, fyi = 0.0, ti = 0.0;
+          for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const std::size_t j = bonds.neighbor[b], s = slots_.entry_slot[b];
+            with_owner(j > i, [&](auto is_owner) {
+              add_bond_force<is_owner()>(fxi, fyi, ti, p.pressure[i], p.pressure[j],
+                                         slot_[kSpringCoef][s], slot_[kPressureCoef][s],
+                                         slot_[kRx][s], slot_[kRy][s], slot_[kUx][s], slot_[kUy][s],
+                                         slot_[kInvLen][s], extension_at(s));
+            });
+          }
+          p.fx[i] = fxi;
+          p.fy[i] = fyi;
+          p.torque[i] = 0.5 * ti;
+        });
+  }
+
   // Pass 1a for the bonds owned by `owners`: the dense directions in unit
   // stride, the few extra bonds one by one, with the same arithmetic.
   // Bonds between two walls are skipped: walls never move or turn (half
@@ -359,6 +372,7 @@ class PaperModelT {
 
   double volume_ = 0;
   BondSlots slots_;
+  bool prefetch_ = false;
   // Per slot: constants, then pass 1's kinematics (extension: the
   // energy-consistent variant only).
   enum Field : std::size_t {

@@ -90,7 +90,7 @@ PassResult per_entry_passes(const ParticleStore& p, const BondTable& bonds) {
 }
 
 template <bool EnergyConsistent>
-void expect_slot_kernels_give_per_entry_bits(const CaseSpec& spec) {
+void expect_slot_kernels_give_per_entry_bits(const CaseSpec& spec, bool prefetching = false) {
   Simulation sim(spec);
   ParticleStore& p = sim.particles();
   std::mt19937_64 rng(5);
@@ -103,6 +103,7 @@ void expect_slot_kernels_give_per_entry_bits(const CaseSpec& spec) {
   sim.refresh_fields();
   const BondTable& bonds = sim.state().bonds;
   PaperModelT<EnergyConsistent> model(p, bonds, {});
+  ASSERT_EQ(model.prefetches(), prefetching);  // both instances of the force gather are tested
   model.compute_strain(p, bonds, p.all());
   model.compute_forces(p, bonds, p.moving());
   const PassResult r = per_entry_passes<EnergyConsistent>(p, bonds);
@@ -129,6 +130,15 @@ TEST(PaperModel, SlotKernelsGiveTheBitsOfThePerEntryGather) {
 TEST(PaperConservative, SlotKernelsGiveTheBitsOfThePerEntryGather) {
   expect_slot_kernels_give_per_entry_bits<true>(testing::rod_case());
   expect_slot_kernels_give_per_entry_bits<true>(testing::free_block_case(12, 7, true));
+}
+
+// At 0.25 mm the slot data exceed kPrefetchAboveBytes: the prefetching
+// instance of the force gather.
+TEST(PaperModel, PrefetchingGatherGivesTheBitsOfThePerEntryGather) {
+  set_thread_count(2);
+  expect_slot_kernels_give_per_entry_bits<false>(testing::rod_case({"l0=0.00025"}), true);
+  expect_slot_kernels_give_per_entry_bits<true>(testing::rod_case({"l0=0.00025"}), true);
+  set_thread_count(1);
 }
 
 }  // namespace
