@@ -4,7 +4,9 @@
 // partners, so the fast path reads what the per-entry path reads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
+#include <vector>
 
 #include "kernels/bond_slots.hpp"
 #include "src/solver/simulation.hpp"
@@ -109,6 +111,47 @@ TEST(BondSlots, SlotValuesAreTheOwnersEntriesAndZeroInEmptySlots) {
     if (!filled[k]) {
       EXPECT_EQ(r0x[k], 0.0) << k;
     }
+}
+
+// gather_lanes finishes every particle of a block exactly once (as a new
+// lane of a group, or by its row), and each group's eight particles lie in
+// the block and share the group's pattern: whatever the blocks' cut.
+TEST(BondSlots, LaneGroupsCoverEachParticleOnceInsideTheirRun) {
+  for (const CaseSpec& spec : cases()) {
+    Simulation sim(spec);
+    const BondTable& bonds = sim.state().bonds;
+    const BondSlots s = make_bond_slots(bonds);
+    const std::size_t n = bonds.particle_count();
+    std::vector<std::int32_t> pattern_of(n, -1);
+    for (const BondSlots::Run& run : s.runs)
+      for (std::size_t i = run.begin; i < run.end; ++i) pattern_of[i] = run.pattern;
+    std::size_t groups = 0;
+    for (const std::size_t cut : {std::size_t{1}, std::size_t{7}, std::size_t{64}, n}) {
+      std::vector<int> finished(n, 0);
+      for (std::size_t b = 0; b < n; b += cut) {
+        const Range block{b, std::min(n, b + cut)};
+        gather_lanes(
+            s, block,
+            [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
+              ++groups;
+              ASSERT_LT(first, kLanes);
+              ASSERT_GE(m, block.begin);
+              ASSERT_LE(m + kLanes, block.end);
+              for (std::size_t k = 0; k < kLanes; ++k) {
+                ASSERT_EQ(&s.patterns[static_cast<std::size_t>(pattern_of[m + k])], &pattern);
+                if (k >= first) ++finished[m + k];
+              }
+            },
+            [&](std::size_t i) {
+              ASSERT_GE(i, block.begin);
+              ASSERT_LT(i, block.end);
+              ++finished[i];
+            });
+      }
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(finished[i], 1) << "particle " << i;
+    }
+    EXPECT_GT(groups, 0u);  // the lanes path ran
+  }
 }
 
 }  // namespace
