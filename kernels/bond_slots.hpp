@@ -22,9 +22,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
+#include "kernels/lanes.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/types.hpp"
 
@@ -122,34 +122,6 @@ void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&
     else
       regular(b, e, s.patterns[static_cast<std::size_t>(run->pattern)]);
   }
-}
-
-// Eight particles' values side by side, in GCC's vector extension: a gather
-// keeps eight particles' sums in registers across all their bonds. GCC lowers
-// it to the target's vectors (one AVX-512 register, two AVX2 or four SSE2
-// ones). Lane-wise +, -, * and / are the scalar IEEE operations, so each lane
-// gives the bits of the scalar code.
-inline constexpr std::size_t kLanes = 8;
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-inline Lanes load_lanes(const double* from) {
-  Lanes v;
-  std::memcpy(&v, from, sizeof v);
-  return v;
-}
-inline void store_lanes(double* to, Lanes v) {
-  std::memcpy(to, &v, sizeof v);
-}
-
-// Slot data larger than this comes from memory, where a gather's hundred
-// or so streams (a dozen entries times its fields) are more than the
-// hardware prefetchers follow: its gathers then prefetch each stream a few
-// groups ahead. Smaller data stays in the caches, where prefetches only cost.
-inline constexpr std::size_t kPrefetchAboveBytes = std::size_t{24} << 20;
-inline constexpr std::size_t kPrefetchAhead = 8 * kLanes;  // values ahead
-template <bool Prefetch>
-inline Lanes load_lanes_ahead(const double* from) {
-  if constexpr (Prefetch) __builtin_prefetch(from + kPrefetchAhead);
-  return load_lanes(from);
 }
 
 // A gather over the particles of `block`, each adding its bonds in CSR

@@ -55,12 +55,15 @@ namespace mpsolid {
 
 namespace tensor2 {
 // Row-major 2x2: m[0] m[1] / m[2] m[3].
-inline double det(const double* m) {
+// T: double, or Lanes (eight tensors, component by component).
+template <class T>
+inline T det(const T* m) {
   return m[0] * m[3] - m[1] * m[2];
 }
 
 // out = m A^-1 (row-major 2x2).
-inline void times_a_inv(const double* m, const double* a_inv, double* out) {
+template <class T>
+inline void times_a_inv(const T* m, const T* a_inv, T* out) {
   out[0] = m[0] * a_inv[0] + m[1] * a_inv[2];
   out[1] = m[0] * a_inv[1] + m[1] * a_inv[3];
   out[2] = m[2] * a_inv[0] + m[3] * a_inv[2];
@@ -274,9 +277,27 @@ class CorrectedGradientModel {
       for (std::size_t c = 0; c < 4; ++c) stress_a_[c * stress_stride_ + i] = stress_a[c];
       jacobian_[i] = jac;
     };
+    // finish() for particles m .. m + kLanes - 1, lane by lane the same
+    // operations (F and A^-1 are rows of 4 per particle).
+    const auto finish_lanes = [&](std::size_t m, const Lanes* g) {
+      Lanes ai[4], f[4], stress[4], stress_a[4], strain, pressure;
+      for (std::size_t c = 0; c < 4; ++c) ai[c] = load_strided(&a_inv_[4 * m], 4, c);
+      tensor2::times_a_inv(g, ai, f);
+      const Lanes jac = tensor2::det(f);
+      Law::piola(f, jac, load_lanes(&p.lambda[m]), load_lanes(&p.mu[m]), stress, strain, pressure);
+      for (Lanes& v : stress) v *= volume_;  // S = V P
+      tensor2::times_a_inv(stress, ai, stress_a);
+      for (std::size_t c = 0; c < 4; ++c) {
+        store_strided(&def_grad_[4 * m], 4, c, f[c]);
+        store_lanes(&stress_a_[c * stress_stride_ + m], stress_a[c]);
+      }
+      store_lanes(&p.strain[m], strain);
+      store_lanes(&p.pressure[m], pressure);
+      store_lanes(&jacobian_[m], jac);
+    };
     gather_lanes(
         slots_, block,
-        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t first) {
+        [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
           const Lanes xi = load_lanes(&p.x[m]), yi = load_lanes(&p.y[m]);
           Lanes g[4] = {};
           for (std::size_t k = 0; k < pattern.slot_shift.size(); ++k) {
@@ -287,10 +308,7 @@ class CorrectedGradientModel {
                                load_lanes(slot_[kWl] + s), load_lanes(slot_[kR0x] + s),
                                load_lanes(slot_[kR0y] + s));
           }
-          for (std::size_t k = first; k < kLanes; ++k) {
-            const double gk[4] = {g[0][k], g[1][k], g[2][k], g[3][k]};
-            finish(m + k, gk);
-          }
+          finish_lanes(m, g);  // overwrites only: the overlapped lanes get the same bits
         },
         [&](std::size_t i) {
           double g[4] = {0, 0, 0, 0};

@@ -19,11 +19,12 @@ struct NeoHookeanLaw {
   static constexpr const char* name = "finite_strain";
   static constexpr bool rotation_invariant = true;
 
-  static void piola(const double* f, double jac, double lambda, double mu, double* out,
-                    double& strain, double& pressure) {
-    const double log_j = std::log(jac);
+  // T: double, or Lanes (eight particles, lane by lane).
+  template <class T>
+  static void piola(const T* f, T jac, T lambda, T mu, T* out, T& strain, T& pressure) {
+    const T log_j = lane_log(jac);
     // F^-T = (1 / J) [[f3, -f2], [-f1, f0]]
-    const double fit[4] = {f[3] / jac, -f[2] / jac, -f[1] / jac, f[0] / jac};
+    const T fit[4] = {f[3] / jac, -f[2] / jac, -f[1] / jac, f[0] / jac};
     for (int k = 0; k < 4; ++k) out[k] = mu * (f[k] - fit[k]) + lambda * log_j * fit[k];
     strain = log_j;
     pressure = -lambda * log_j / jac;

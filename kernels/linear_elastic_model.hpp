@@ -20,15 +20,16 @@ struct HookeLaw {
   static constexpr const char* name = "linear_elastic";
   static constexpr bool rotation_invariant = false;  // spurious strain ~ -a^2 / 2
 
-  static void piola(const double* f, double, double lambda, double mu, double* out, double& strain,
-                    double& pressure) {
-    const double exx = f[0] - 1.0, eyy = f[3] - 1.0, exy = 0.5 * (f[1] + f[2]);
-    const double volumetric = lambda * (exx + eyy);
+  // T: double, or Lanes (eight particles, lane by lane).
+  template <class T>
+  static void piola(const T* f, T, T lambda, T mu, T* out, T& strain, T& pressure) {
+    const T exx = f[0] - 1.0, eyy = f[3] - 1.0, exy = 0.5 * (f[1] + f[2]);
+    const T volumetric = lambda * (exx + eyy);
     out[0] = volumetric + 2.0 * mu * exx;
     out[1] = 2.0 * mu * exy;
     out[2] = 2.0 * mu * exy;
     out[3] = volumetric + 2.0 * mu * eyy;
-    const double trace = f[0] + f[3] - 2.0;  // tr eps
+    const T trace = f[0] + f[3] - 2.0;  // tr eps
     strain = trace;
     pressure = -(lambda + mu) * trace;
   }
