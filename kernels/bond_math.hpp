@@ -33,29 +33,34 @@ inline double lattice_number_density(double l0, double re) {
 
 using ::mpsolid::cross;
 
+// T: double, or a vector of lanes (kernels/lanes.hpp) computing lane by lane.
+template <class T>
 struct Rotation {
-  double cos, sin;
+  T cos, sin;
 };
 
 // Rotation by theta_ij = (theta_i + theta_j) / 2 from the two half angles.
-inline Rotation bond_rotation(double ci, double si, double cj, double sj) {
+template <class T>
+inline Rotation<T> bond_rotation(T ci, T si, T cj, T sj) {
   return {ci * cj - si * sj, si * cj + ci * sj};
 }
 
+template <class T>
 struct BondVectors {
-  double rx, ry;  // r_ij = r_j - r_i
-  double ux, uy;  // u_ij = r_ij - R(theta_ij) r0_ij
+  T rx, ry;  // r_ij = r_j - r_i
+  T ux, uy;  // u_ij = r_ij - R(theta_ij) r0_ij
 };
 
-inline BondVectors bond_vectors(double xi, double yi, double xj, double yj, Rotation rot,
-                                double r0x, double r0y) {
-  const double rx = xj - xi;
-  const double ry = yj - yi;
+template <class T>
+inline BondVectors<T> bond_vectors(T xi, T yi, T xj, T yj, Rotation<T> rot, T r0x, T r0y) {
+  const T rx = xj - xi;
+  const T ry = yj - yi;
   return {rx, ry, rx - (rot.cos * r0x - rot.sin * r0y), ry - (rot.sin * r0x + rot.cos * r0y)};
 }
 
 // Normal extension u_ij . e_ij with e_ij = r_ij / |r_ij|.
-inline double normal_extension(const BondVectors& b, double inv_length) {
+template <class T>
+inline T normal_extension(const BondVectors<T>& b, T inv_length) {
   return (b.ux * b.rx + b.uy * b.ry) * inv_length;
 }
 

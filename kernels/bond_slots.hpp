@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "kernels/lanes.hpp"
@@ -90,6 +91,17 @@ void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
 // moving): for each direction, dense(count, slot, i, j) for `count`
 // consecutive owners from i (partners from j = i + o, slots from `slot`);
 // then extra(slot, i, j) for each extra bond owned there.
+// The extra bonds owned by particles in `owners`: [first, last) into
+// extra_owner, extra_partner (slots dense_slots + k).
+inline std::pair<std::size_t, std::size_t> owned_extras(const BondSlots& s, Range owners) {
+  const auto at = [&](std::size_t i) {
+    return static_cast<std::size_t>(std::lower_bound(s.extra_owner.begin(), s.extra_owner.end(),
+                                                     static_cast<std::uint32_t>(i)) -
+                                    s.extra_owner.begin());
+  };
+  return {at(owners.begin), at(owners.end)};
+}
+
 template <class Dense, class Extra>
 void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
                          Extra&& extra) {
@@ -101,10 +113,8 @@ void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end
     const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
     if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
   }
-  const auto first = std::lower_bound(s.extra_owner.begin(), s.extra_owner.end(),
-                                      static_cast<std::uint32_t>(owners.begin));
-  for (auto k = static_cast<std::size_t>(first - s.extra_owner.begin());
-       k < s.extra_owner.size() && s.extra_owner[k] < owners.end; ++k)
+  const auto [first, last] = owned_extras(s, owners);
+  for (std::size_t k = first; k < last; ++k)
     if (s.extra_partner[k] >= fixed_end)
       extra(s.dense_slots + k, s.extra_owner[k], s.extra_partner[k]);
 }

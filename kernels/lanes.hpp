@@ -47,6 +47,15 @@ inline Lanes load_lanes_ahead(const double* from) {
   return load_lanes(from);
 }
 
+// The square root of a value, or of each lane (correctly rounded either way).
+inline double lane_sqrt(double x) {
+  return std::sqrt(x);
+}
+inline Lanes lane_sqrt(Lanes v) {
+  for (std::size_t k = 0; k < kLanes; ++k) v[k] = std::sqrt(v[k]);
+  return v;
+}
+
 // std::log of a value, or of each lane (glibc's: the scalar bits).
 inline double lane_log(double x) {
   return std::log(x);

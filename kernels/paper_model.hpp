@@ -228,13 +228,44 @@ class PaperModelT {
   }
 
   // Pass 1a for the bonds owned by `owners`: the dense directions in unit
-  // stride, the few extra bonds one by one, with the same arithmetic.
-  // Bonds between two walls are skipped: walls never move or turn (half
-  // angles exactly 1 and 0), so their slots keep what the constructor put
-  // there, the bits this pass would compute.
+  // stride, the extra bonds (between bodies, and inside small ones) eight at
+  // a time, with the same arithmetic. Bonds between two walls are skipped:
+  // walls never move or turn (half angles exactly 1 and 0), so their slots
+  // keep what the constructor put there, the bits this pass would compute.
   void compute_bond_slots(const ParticleStore& p, Range owners) {
+    const auto [first, last] = owned_extras(slots_, owners);
+    const std::size_t fixed_end = p.walls.end;
+    const auto extra = [&](std::size_t k) {
+      const std::size_t i = slots_.extra_owner[k], j = slots_.extra_partner[k];
+      const std::size_t s = slots_.dense_slots + k;
+      if (j >= fixed_end)
+        store_kinematics(s,
+                         kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
+                                    p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]));
+    };
+    std::size_t k = first;
+    for (; k + kLanes <= last; k += kLanes) {
+      const std::uint32_t* owner = &slots_.extra_owner[k];
+      const std::uint32_t* partner = &slots_.extra_partner[k];
+      if (*std::min_element(partner, partner + kLanes) < fixed_end) {
+        for (std::size_t l = k; l < k + kLanes; ++l) extra(l);
+        continue;
+      }
+      const auto ends = [&](const std::vector<double>& a, const std::uint32_t* at) {
+        Lanes v;
+        for (std::size_t l = 0; l < kLanes; ++l) v[l] = a[at[l]];
+        return v;
+      };
+      const std::size_t s = slots_.dense_slots + k;
+      store_kinematics_lanes(
+          s, kinematics(ends(p.x, owner), ends(p.y, owner), ends(p.half_cos, owner),
+                        ends(p.half_sin, owner), ends(p.x, partner), ends(p.y, partner),
+                        ends(p.half_cos, partner), ends(p.half_sin, partner),
+                        load_lanes(slot_[kR0x] + s), load_lanes(slot_[kR0y] + s)));
+    }
+    for (; k < last; ++k) extra(k);
     for_each_owned_slot(
-        slots_, owners, p.walls.end,
+        slots_, owners, fixed_end,
         [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
           bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
                           &p.half_cos[j], &p.half_sin[j], &slot_[kR0x][slot], &slot_[kR0y][slot],
@@ -243,27 +274,36 @@ class PaperModelT {
                           &slot_[kStrainTerm][slot],
                           EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
         },
-        [&](std::size_t s, std::size_t i, std::size_t j) {
-          store_kinematics(
-              s, kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
-                            p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]));
-        });
+        [](std::size_t, std::size_t, std::size_t) {});  // the extras are done above
   }
 
   // One bond's kinematics seen from its owner i: r_ij, u_ij, 1 / |r_ij| and
   // the normal extension u_ij . e_ij.
+  // T: double, or Lanes (eight bonds, lane by lane).
+  template <class T>
   struct Kinematics {
-    double rx, ry, ux, uy, inv_len, extension;
+    T rx, ry, ux, uy, inv_len, extension;
   };
-  static Kinematics kinematics(double xi, double yi, double ci, double si, double xj, double yj,
-                               double cj, double sj, double r0x, double r0y) {
+  template <class T>
+  static Kinematics<T> kinematics(T xi, T yi, T ci, T si, T xj, T yj, T cj, T sj, T r0x, T r0y) {
     const auto rot = bond_math::bond_rotation(ci, si, cj, sj);
     const auto v = bond_math::bond_vectors(xi, yi, xj, yj, rot, r0x, r0y);
-    const double il = 1.0 / std::sqrt(v.rx * v.rx + v.ry * v.ry);
+    const T il = 1.0 / lane_sqrt(v.rx * v.rx + v.ry * v.ry);
     return {v.rx, v.ry, v.ux, v.uy, il, bond_math::normal_extension(v, il)};
   }
 
-  void store_kinematics(std::size_t s, const Kinematics& k) {
+  // store_kinematics() for slots s .. s + kLanes - 1.
+  void store_kinematics_lanes(std::size_t s, const Kinematics<Lanes>& k) {
+    store_lanes(slot_[kRx] + s, k.rx);
+    store_lanes(slot_[kRy] + s, k.ry);
+    store_lanes(slot_[kUx] + s, k.ux);
+    store_lanes(slot_[kUy] + s, k.uy);
+    store_lanes(slot_[kInvLen] + s, k.inv_len);
+    store_lanes(slot_[kStrainTerm] + s, load_lanes(slot_[kStrainCoef] + s) * k.extension);
+    if constexpr (EnergyConsistent) store_lanes(slot_[kExtension] + s, k.extension);
+  }
+
+  void store_kinematics(std::size_t s, const Kinematics<double>& k) {
     slot_[kRx][s] = k.rx;
     slot_[kRy][s] = k.ry;
     slot_[kUx][s] = k.ux;
