@@ -86,11 +86,23 @@ std::vector<double> slot_values(const BondSlots& slots, const BondTable& bonds,
 void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
                      const std::vector<double>& per_entry, double* out);
 
-// The owner pass over the bonds owned by particles in `owners`, except the
-// bonds between two particles below `fixed_end` (walls: stored first, never
-// moving): for each direction, dense(count, slot, i, j) for `count`
-// consecutive owners from i (partners from j = i + o, slots from `slot`);
-// then extra(slot, i, j) for each extra bond owned there.
+// The dense part of the owner pass over the bonds owned by particles in
+// `owners`, except the bonds between two particles below `fixed_end` (walls:
+// stored first, never moving): for each direction, dense(count, slot, i, j)
+// for `count` consecutive owners from i (partners from j = i + o, slots from
+// `slot`).
+template <class Dense>
+void for_each_dense_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense) {
+  const std::size_t n = s.particles;
+  for (std::size_t d = 0; d < s.directions.size(); ++d) {
+    const std::size_t o = s.directions[d];
+    // Owners below fixed_end - o have their partner below fixed_end too.
+    const std::size_t begin = std::max(owners.begin, fixed_end > o ? fixed_end - o : 0);
+    const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
+    if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
+  }
+}
+
 // The extra bonds owned by particles in `owners`: [first, last) into
 // extra_owner, extra_partner (slots dense_slots + k).
 inline std::pair<std::size_t, std::size_t> owned_extras(const BondSlots& s, Range owners) {
@@ -102,17 +114,12 @@ inline std::pair<std::size_t, std::size_t> owned_extras(const BondSlots& s, Rang
   return {at(owners.begin), at(owners.end)};
 }
 
+// The whole owner pass: for_each_dense_slot, then extra(slot, i, j) for each
+// extra bond owned there (but those between two particles below fixed_end).
 template <class Dense, class Extra>
 void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
                          Extra&& extra) {
-  const std::size_t n = s.particles;
-  for (std::size_t d = 0; d < s.directions.size(); ++d) {
-    const std::size_t o = s.directions[d];
-    // Owners below fixed_end - o have their partner below fixed_end too.
-    const std::size_t begin = std::max(owners.begin, fixed_end > o ? fixed_end - o : 0);
-    const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
-    if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
-  }
+  for_each_dense_slot(s, owners, fixed_end, dense);
   const auto [first, last] = owned_extras(s, owners);
   for (std::size_t k = first; k < last; ++k)
     if (s.extra_partner[k] >= fixed_end)

@@ -93,7 +93,6 @@ class CorrectedGradientModel {
     const double n0 = number_density(bonds);
     a_inv_.assign(4 * n, 0.0);
     def_grad_.assign(4 * n, 0.0);
-    stress_stride_ = n;
     stress_a_.assign(4 * n, 0.0);
     jacobian_.assign(n, 1.0);
     std::vector<double> wl_of(bonds.entry_count());
@@ -167,7 +166,7 @@ class CorrectedGradientModel {
   // is the same sum from either end), added by the owner and subtracted by
   // the other end, in CSR order.
   void compute_forces_block(ParticleStore& p, const BondTable& bonds, Range block) const {
-    const auto stress_a = [&](std::size_t c) { return &stress_a_[c * stress_stride_]; };
+    const auto stress_a = [&](std::size_t c) { return &stress_a_[c * particle_count()]; };
     gather_lanes(
         slots_, block,
         [&](std::size_t m, const BondSlots::Pattern& pattern, std::size_t) {
@@ -254,6 +253,8 @@ class CorrectedGradientModel {
   }
 
  private:
+  std::size_t particle_count() const { return jacobian_.size(); }
+
   static double youngs_modulus(double lambda, double mu) {
     return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
   }
@@ -274,7 +275,7 @@ class CorrectedGradientModel {
       for (double& v : stress) v *= volume_;  // S = V P
       double stress_a[4];
       tensor2::times_a_inv(stress, ai, stress_a);
-      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * stress_stride_ + i] = stress_a[c];
+      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * particle_count() + i] = stress_a[c];
       jacobian_[i] = jac;
     };
     // finish() for particles m .. m + kLanes - 1, lane by lane the same
@@ -289,7 +290,7 @@ class CorrectedGradientModel {
       tensor2::times_a_inv(stress, ai, stress_a);
       for (std::size_t c = 0; c < 4; ++c) {
         store_strided(&def_grad_[4 * m], 4, c, f[c]);
-        store_lanes(&stress_a_[c * stress_stride_ + m], stress_a[c]);
+        store_lanes(&stress_a_[c * particle_count() + m], stress_a[c]);
       }
       store_lanes(&p.strain[m], strain);
       store_lanes(&p.pressure[m], pressure);
@@ -351,7 +352,7 @@ class CorrectedGradientModel {
     const auto finish = [&](std::size_t i, const double* q) {
       double qa[4];
       tensor2::times_a_inv(q, &a_inv_[4 * i], qa);
-      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * stress_stride_ + i] += qa[c];
+      for (std::size_t c = 0; c < 4; ++c) stress_a_[c * particle_count() + i] += qa[c];
     };
     gather_lanes(
         slots_, block,
@@ -434,8 +435,7 @@ class CorrectedGradientModel {
   bool consistent_hourglass_ = false;
   std::vector<double> a_inv_;     // A_i^-1, 4 per particle
   std::vector<double> def_grad_;  // F_i, 4 per particle
-  std::vector<double> stress_a_;  // (S_i + Q_i) A_i^-1 by component: c * stress_stride_ + i
-  std::size_t stress_stride_ = 0;
+  std::vector<double> stress_a_;  // (S_i + Q_i) A_i^-1 by component: c * particle_count() + i
   std::vector<double> jacobian_;  // J_i
   BondSlots slots_;
   // Per slot: constants (h_ij = alpha E_ij V (2 / n0) wl_ij) and the

@@ -24,6 +24,22 @@ inline void store_lanes(double* to, Lanes v) {
   std::memcpy(to, &v, sizeof v);
 }
 
+// One value or kLanes consecutive ones, as T (double or Lanes), and back:
+// a kernel written once for both.
+template <class T>
+inline T load_as(const double* from) {
+  if constexpr (sizeof(T) == sizeof(double))
+    return *from;
+  else
+    return load_lanes(from);
+}
+inline void store_to(double* to, double v) {
+  *to = v;
+}
+inline void store_to(double* to, Lanes v) {
+  store_lanes(to, v);
+}
+
 // Component c of kLanes rows of `width` values from `rows` (a row-major
 // array of small tensors), and back.
 inline Lanes load_strided(const double* rows, std::size_t width, std::size_t c) {

@@ -243,6 +243,12 @@ class PaperModelT {
                          kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
                                     p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]));
     };
+    // The values of kLanes particles listed at `at`.
+    const auto ends = [](const std::vector<double>& a, const std::uint32_t* at) {
+      Lanes v;
+      for (std::size_t l = 0; l < kLanes; ++l) v[l] = a[at[l]];
+      return v;
+    };
     std::size_t k = first;
     for (; k + kLanes <= last; k += kLanes) {
       const std::uint32_t* owner = &slots_.extra_owner[k];
@@ -251,30 +257,24 @@ class PaperModelT {
         for (std::size_t l = k; l < k + kLanes; ++l) extra(l);
         continue;
       }
-      const auto ends = [&](const std::vector<double>& a, const std::uint32_t* at) {
-        Lanes v;
-        for (std::size_t l = 0; l < kLanes; ++l) v[l] = a[at[l]];
-        return v;
-      };
       const std::size_t s = slots_.dense_slots + k;
-      store_kinematics_lanes(
-          s, kinematics(ends(p.x, owner), ends(p.y, owner), ends(p.half_cos, owner),
-                        ends(p.half_sin, owner), ends(p.x, partner), ends(p.y, partner),
-                        ends(p.half_cos, partner), ends(p.half_sin, partner),
-                        load_lanes(slot_[kR0x] + s), load_lanes(slot_[kR0y] + s)));
+      store_kinematics(s,
+                       kinematics(ends(p.x, owner), ends(p.y, owner), ends(p.half_cos, owner),
+                                  ends(p.half_sin, owner), ends(p.x, partner), ends(p.y, partner),
+                                  ends(p.half_cos, partner), ends(p.half_sin, partner),
+                                  load_lanes(slot_[kR0x] + s), load_lanes(slot_[kR0y] + s)));
     }
     for (; k < last; ++k) extra(k);
-    for_each_owned_slot(
-        slots_, owners, fixed_end,
-        [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
-          bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
-                          &p.half_cos[j], &p.half_sin[j], &slot_[kR0x][slot], &slot_[kR0y][slot],
-                          &slot_[kStrainCoef][slot], &slot_[kRx][slot], &slot_[kRy][slot],
-                          &slot_[kUx][slot], &slot_[kUy][slot], &slot_[kInvLen][slot],
-                          &slot_[kStrainTerm][slot],
-                          EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
-        },
-        [](std::size_t, std::size_t, std::size_t) {});  // the extras are done above
+    for_each_dense_slot(slots_, owners, fixed_end,
+                        [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
+                          bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i],
+                                          &p.x[j], &p.y[j], &p.half_cos[j], &p.half_sin[j],
+                                          &slot_[kR0x][slot], &slot_[kR0y][slot],
+                                          &slot_[kStrainCoef][slot], &slot_[kRx][slot],
+                                          &slot_[kRy][slot], &slot_[kUx][slot], &slot_[kUy][slot],
+                                          &slot_[kInvLen][slot], &slot_[kStrainTerm][slot],
+                                          EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
+                        });
   }
 
   // One bond's kinematics seen from its owner i: r_ij, u_ij, 1 / |r_ij| and
@@ -292,25 +292,17 @@ class PaperModelT {
     return {v.rx, v.ry, v.ux, v.uy, il, bond_math::normal_extension(v, il)};
   }
 
-  // store_kinematics() for slots s .. s + kLanes - 1.
-  void store_kinematics_lanes(std::size_t s, const Kinematics<Lanes>& k) {
-    store_lanes(slot_[kRx] + s, k.rx);
-    store_lanes(slot_[kRy] + s, k.ry);
-    store_lanes(slot_[kUx] + s, k.ux);
-    store_lanes(slot_[kUy] + s, k.uy);
-    store_lanes(slot_[kInvLen] + s, k.inv_len);
-    store_lanes(slot_[kStrainTerm] + s, load_lanes(slot_[kStrainCoef] + s) * k.extension);
-    if constexpr (EnergyConsistent) store_lanes(slot_[kExtension] + s, k.extension);
-  }
-
-  void store_kinematics(std::size_t s, const Kinematics<double>& k) {
-    slot_[kRx][s] = k.rx;
-    slot_[kRy][s] = k.ry;
-    slot_[kUx][s] = k.ux;
-    slot_[kUy][s] = k.uy;
-    slot_[kInvLen][s] = k.inv_len;
-    slot_[kStrainTerm][s] = slot_[kStrainCoef][s] * k.extension;
-    if constexpr (EnergyConsistent) slot_[kExtension][s] = k.extension;
+  // Stores a bond's kinematics into slot s (T = double), or eight bonds'
+  // into slots s .. s + kLanes - 1 (T = Lanes).
+  template <class T>
+  void store_kinematics(std::size_t s, const Kinematics<T>& k) {
+    store_to(slot_[kRx] + s, k.rx);
+    store_to(slot_[kRy] + s, k.ry);
+    store_to(slot_[kUx] + s, k.ux);
+    store_to(slot_[kUy] + s, k.uy);
+    store_to(slot_[kInvLen] + s, k.inv_len);
+    store_to(slot_[kStrainTerm] + s, load_as<T>(slot_[kStrainCoef] + s) * k.extension);
+    if constexpr (EnergyConsistent) store_to(slot_[kExtension] + s, k.extension);
   }
 
   // kinematics() for `count` bonds (i + m, j + m) into slots slot + m. Unit

@@ -39,10 +39,9 @@ void ThreadGovernor::conclude(bool better) {
     resize(trial_);
     ++changes_;
   }
-  if (trial_ > base_) retry_after_ = better ? kFirstRetry : std::min(2 * retry_after_, kLastRetry);
-  if (trial_ < base_)
-    retry_down_after_ =
-        better ? kFirstRetry : std::clamp(2 * retry_down_after_, kFirstRetry, kLastRetry);
+  // After a success the next trial that way comes soon; after a failure twice as late.
+  int& retry = trial_ > base_ ? retry_after_ : retry_down_after_;
+  retry = better ? kFirstRetry : std::clamp(2 * retry, kFirstRetry, kLastRetry);
   stage_ = Stage::steady;
   windows_since_change_ = 0;
 }
