@@ -334,6 +334,63 @@ void read_stability(TableReader& top, CaseSpec& c) {
   r.finish();
 }
 
+// [contact]: off unless enabled; the stiffness defaults to the largest
+// plane-strain bulk modulus lambda + mu of the contacting elastic bodies'
+// materials (of any contacting body's when none is elastic).
+void read_contact(TableReader& top, CaseSpec& c) {
+  const TomlValue* table = top.subtable_or_null("contact");
+  if (!table) return;
+  TableReader r(*table, "contact", top.file());
+  ContactSpec& k = c.contact;
+  k.enabled = r.boolean_or("enabled", true);
+  k.distance = r.number_or("distance", k.distance);
+  // Bonds reach 2.1 l0, so every pair closer than that at set-up is bonded:
+  // a contact distance up to 2 l0 never repels a pair at rest.
+  r.range_check("distance", k.distance, k.distance > 0 && k.distance <= 2.0,
+                "(0, 2] lattice spacings l0");
+  k.skin = r.number_or("skin", k.skin);
+  r.range_check("skin", k.skin, k.skin > 0 && k.skin <= 2.0, "(0, 2] lattice spacings l0");
+  k.min_distance = r.number_or("min_distance", k.min_distance);
+  r.range_check("min_distance", k.min_distance, k.min_distance >= 0 && k.min_distance < 1,
+                "[0, 1) contact distances");
+  k.bodies.clear();
+  if (const TomlValue* names = r.find("bodies")) {
+    if (!names->is_array() || names->as_array().empty())
+      r.fail("bodies",
+             fmt::format("expected a non-empty array of body names, got {}", describe(*names)));
+    for (const TomlValue& name : names->as_array()) {
+      const std::string text = r.string(name, "bodies", "a body name");
+      const auto it = std::find_if(c.bodies.begin(), c.bodies.end(),
+                                   [&](const BodySpec& b) { return b.name == text; });
+      if (it == c.bodies.end())
+        r.fail("bodies",
+               fmt::format("unknown body '{}' (allowed: {})", text, join(names_of(c.bodies))));
+      k.bodies.push_back(static_cast<int>(it - c.bodies.begin()));
+    }
+    std::sort(k.bodies.begin(), k.bodies.end());
+    if (std::adjacent_find(k.bodies.begin(), k.bodies.end()) != k.bodies.end())
+      r.fail("bodies", "lists a body twice");
+  } else {
+    for (std::size_t b = 0; b < c.bodies.size(); ++b) k.bodies.push_back(static_cast<int>(b));
+  }
+  const bool any_moving = std::any_of(k.bodies.begin(), k.bodies.end(), [&](int b) {
+    return c.bodies[static_cast<std::size_t>(b)].kind != Kind::wall;
+  });
+  if (k.enabled && !any_moving)
+    r.fail("bodies", "lists only walls, which never move: contact would do nothing");
+  double bulk = 0, bulk_elastic = 0;
+  for (const int b : k.bodies) {
+    const BodySpec& body = c.bodies[static_cast<std::size_t>(b)];
+    const Material& m = c.materials[static_cast<std::size_t>(body.material)];
+    bulk = std::max(bulk, m.lambda() + m.mu());
+    if (body.kind == Kind::elastic) bulk_elastic = std::max(bulk_elastic, m.lambda() + m.mu());
+  }
+  k.stiffness = r.number_or("stiffness", bulk_elastic > 0 ? bulk_elastic : bulk);
+  r.range_check("stiffness", k.stiffness, k.stiffness > 0 && std::isfinite(k.stiffness),
+                "(0, inf) Pa");
+  r.finish();
+}
+
 void read_numerics(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("numerics");
   if (!table) return;
@@ -364,6 +421,7 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_output(top, c);
   read_model_sections(top, models, c);
   read_stability(top, c);
+  read_contact(top, c);
   read_numerics(top, c);
   top.finish();
   if (!c.dt_auto) {

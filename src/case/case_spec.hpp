@@ -68,6 +68,21 @@ struct StabilitySpec {
   double min_jacobian = 0.1;          // J = det F at or below this: a collapsed neighbourhood
 };
 
+// Contact between particles that are not bonded in the reference
+// configuration (MODEL.md section 7): a frictionless repulsive pair force
+// k (d - r) below the contact distance d, between the surface particles of
+// the bodies listed. Off unless the case has [contact] enabled = true.
+struct ContactSpec {
+  bool enabled = false;
+  double distance = 1.0;    // d, in units of l0: below the nearest non-bonded distance at set-up
+  double skin = 0.5;        // Verlet skin, in units of l0
+  double stiffness = 0;     // K_c in Pa (the pair spring is K_c * depth); set by the reader
+  std::vector<int> bodies;  // indices into CaseSpec::bodies, ascending
+  // The interpenetration check: a non-bonded pair closer than this fraction
+  // of the contact distance stops the run.
+  double min_distance = 0.5;
+};
+
 // The most steps a run may count: step k's time k dt and every cadence stay
 // exact in a double (2^53).
 inline constexpr double kMaxSteps = 9007199254740992.0;
@@ -104,6 +119,7 @@ struct CaseSpec {
   int compression = 0;             // deflate level of frames.h5: 0 (off) to 9
   OptionValues model_options;      // the chosen model's section, defaults filled in
   StabilitySpec stability;
+  ContactSpec contact;
   // numerics.flush_subnormals: subnormals flushed to zero in the solver's
   // loops (src/float_mode.hpp). Opt-in: faster while a wave crosses a fine
   // lattice, not bit-identical to IEEE in the far field (below 1e-270).

@@ -1,6 +1,7 @@
 #include "src/case/resolved_case.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <toml.hpp>
 
@@ -95,6 +96,17 @@ std::string resolved_case_toml(const CaseSpec& c) {
       "{}\n",
       c.stability.check_interval, format_number(c.stability.max_speed),
       format_number(c.stability.min_jacobian), format_number(c.stability.energy_tolerance));
+  if (c.contact.enabled) {
+    std::vector<std::string> names;
+    for (const int b : c.contact.bodies)
+      names.push_back(quote(c.bodies[static_cast<std::size_t>(b)].name));
+    out += fmt::format(
+        "\n[contact]\nenabled = true\ndistance = {}\nskin = {}\nstiffness = {}\nmin_distance = "
+        "{}\nbodies = [{}]\n",
+        format_number(c.contact.distance), format_number(c.contact.skin),
+        format_number(c.contact.stiffness), format_number(c.contact.min_distance),
+        fmt::join(names, ", "));
+  }
   out += fmt::format("\n[numerics]\nflush_subnormals = {}\n", c.flush_subnormals);
   return out;
 }

@@ -8,6 +8,10 @@ namespace mpsolid {
 struct Diagnostics {
   double kinetic_energy = 0;  // translational + rotational
   double strain_energy = 0;
+  double contact_energy = 0;  // 0 without contact
+  // The smallest distance between two contact candidates that may touch,
+  // capped at the search's reach (0 without contact).
+  double contact_min_distance = 0;
   double external_work = 0;
   double momentum_x = 0, momentum_y = 0;
   double angular_momentum = 0;

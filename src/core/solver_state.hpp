@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "src/core/bonds.hpp"
+#include "src/core/contact_state.hpp"
 #include "src/core/holds.hpp"
 #include "src/core/loads.hpp"
 #include "src/core/particle_store.hpp"
@@ -20,6 +21,7 @@ struct SolverState {
   std::vector<RigidBody> rigid_bodies;
   std::vector<StepLoad> loads;
   std::vector<HeldRange> holds;
+  ContactState contact;             // empty unless the case has contact
   std::vector<Range> body_ranges;   // storage range of each body (case order)
   std::vector<std::size_t> probes;  // storage index of each probe's particle (case order)
   std::int64_t step = 0;

@@ -45,7 +45,9 @@ StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, doubl
                               double tolerance) {
   StabilityVerdict v;
   const double scale = std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy)});
-  v.value = d.kinetic_energy + d.strain_energy - d.external_work - initial_energy;
+  // PE: the strain energy and the contact energy.
+  v.value =
+      d.kinetic_energy + d.strain_energy + d.contact_energy - d.external_work - initial_energy;
   v.limit = tolerance * scale;
   if (scale > 0.0 && std::abs(v.value) > v.limit) {
     v.ok = false;

@@ -16,11 +16,12 @@ enum class Phase {
   rigid_bodies,
   diagnostics,
   output,
+  contact,
   count_
 };
 inline constexpr std::array<const char*, static_cast<std::size_t>(Phase::count_)> kPhaseNames = {
-    "setup", "neighbors", "half_angles",  "strain",      "forces",
-    "loads", "integrate", "rigid_bodies", "diagnostics", "output"};
+    "setup",     "neighbors",    "half_angles", "strain", "forces", "loads",
+    "integrate", "rigid_bodies", "diagnostics", "output", "contact"};
 
 class PhaseTimers {
  public:

@@ -4,7 +4,11 @@
 
 #include <fmt/format.h>
 
+#include "kernels/contact_force.hpp"
+#include "neighbor/contact_search.hpp"
 #include "src/core/float_mode.hpp"
+#include "src/core/ordered_sum.hpp"
+#include "src/solver/contact_setup.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/setup.hpp"
 #include "src/solver/step.hpp"
@@ -19,11 +23,12 @@ Simulation::Simulation(const CaseSpec& spec) {
   stable_step_ = choice.estimate;
   state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
   model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
+  state_.contact = make_contact(spec_, state_);
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
   const Diagnostics start = diagnostics();
-  initial_energy_ = start.kinetic_energy + start.strain_energy;
+  initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }
 
 void Simulation::advance(std::int64_t steps) {
@@ -33,17 +38,31 @@ void Simulation::advance(std::int64_t steps) {
 
 void Simulation::refresh_fields() {
   std::visit([&](auto& model) { update_strain(model, state_, timers_); }, model_);
+  if (state_.contact.enabled()) {
+    auto t = timers_.time(Phase::contact);
+    refresh_contact_list(state_.contact, state_.particles, state_.bonds);
+  }
 }
 
 Diagnostics Simulation::current_diagnostics() {
   auto t = timers_.time(Phase::diagnostics);
-  return std::visit(
+  Diagnostics d = std::visit(
       [&](const auto& model) {
         return compute_diagnostics(state_, [&](std::size_t i) {
           return model.particle_strain_energy(state_.particles, state_.bonds, i);
         });
       },
       model_);
+  const ContactState& c = state_.contact;
+  if (c.enabled()) {
+    d.contact_energy = ordered_sum<1>(0, c.size(), [&](std::size_t a) {
+      return std::array<double, 1>{contact_energy_share(c, state_.particles, a)};
+    })[0];
+    const double reach = contact_search_reach(spec_);
+    const ClosestContact closest = closest_contact(c, state_.particles, state_.bonds, reach);
+    d.contact_min_distance = closest.found ? closest.distance : reach;
+  }
+  return d;
 }
 
 Diagnostics Simulation::diagnostics() {
@@ -70,6 +89,10 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     v.has_neighbor = integrity.neighbor != integrity.particle;
     v.value = integrity.value;
     return v;
+  }
+  if (state_.contact.enabled()) {
+    const StabilityVerdict touch = check_interpenetration(state_.contact, p);
+    if (!touch.ok) return touch;
   }
   const StabilityVerdict speed = check_speed(p, limit_speed_);
   if (!speed.ok) return speed;

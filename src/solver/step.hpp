@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "kernels/contact_force.hpp"
+#include "neighbor/contact_search.hpp"
 #include "src/core/half_angles.hpp"
 #include "src/core/integrator.hpp"
 #include "src/core/solver_state.hpp"
@@ -57,6 +59,7 @@ class BodyKicks {
 template <bool Rotation>
 void integrate_block(SolverState& s, double dt, Range block, BodyKicks& kicks) {
   ParticleStore& p = s.particles;
+  if (s.contact.enabled()) add_contact_forces(p, s.contact, block);
   apply_loads(p, s.loads, block);
   if (!s.holds.empty()) clear_held_forces(p, s.holds, block);
   kick_drift(p, {block.begin, std::min(block.end, p.elastic.end)}, dt, Rotation);
@@ -70,6 +73,24 @@ void integrate_block(SolverState& s, double dt, Range block, BodyKicks& kicks) {
   }
 }
 
+// The contact forces of the current positions, called by every thread of the
+// team. When some candidate has moved more than half the skin since the
+// Verlet list was built, one thread rebuilds it and the pass runs again.
+inline void contact_pass(SolverState& s, std::int64_t step) {
+  ContactState& c = s.contact;
+  const auto pass = [&] {
+    parallel_blocks(c.first_moving, c.size(), [&](std::size_t b, std::size_t e) {
+      compute_contact_forces(c, s.particles, {b, e}, step);
+    });
+  };
+  pass();
+  // Read after the pass's barrier: every thread sees the same value.
+  if (c.stale.step.load(std::memory_order_relaxed) != step) return;
+  parallel_blocks(0, 1,
+                  [&](std::size_t, std::size_t) { build_contact_list(c, s.particles, s.bonds); });
+  pass();
+}
+
 // One step, called by every thread of the team. Needs the half angles of
 // the current rotations (the previous step's integration leaves them).
 template <class Model>
@@ -77,6 +98,10 @@ void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std
                BodyKicks& kicks) {
   ParticleStore& p = s.particles;
   constexpr bool rot = Model::uses_rotation;
+  if (s.contact.enabled()) {
+    TeamPhase t(timers, Phase::contact);
+    contact_pass(s, step);
+  }
   {
     TeamPhase t(timers, Phase::strain);
     // Positions stay put until the force pass, and the switch-on is read

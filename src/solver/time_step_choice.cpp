@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "kernels/model_registry.hpp"
+#include "src/solver/contact_setup.hpp"
 #include "src/solver/setup.hpp"
 
 namespace mpsolid {
@@ -23,6 +26,13 @@ TimeStepChoice fix_time_step(const CaseSpec& spec, PhaseTimers& timers) {
         "{}: time.dt = \"auto\" needs elastic particles to estimate the stable step from; "
         "give dt in s",
         spec.source));
+  // Contact stiffens the system only once bodies touch, so its bound is
+  // added: the largest eigenvalue of a sum is at most the sum of the largest.
+  if (const double contact = contact_omega_squared(spec, initial); contact > 0) {
+    choice.estimate.omega_max =
+        std::sqrt(choice.estimate.omega_max * choice.estimate.omega_max + contact);
+    choice.estimate.dt_limit = 2.0 / choice.estimate.omega_max;
+  }
   choice.spec.set_auto_time_step(choice.estimate.dt_limit, choice.estimate.omega_max);
   return choice;
 }

@@ -1,0 +1,87 @@
+#pragma once
+// Contact between particles that are not bonded in the reference
+// configuration (MODEL.md section 7): the candidates (surface particles of
+// the contacting bodies, fixed at set-up), their Verlet list and the contact
+// forces of the current step. Plain data: the search that fills the list is
+// neighbor/contact_search, the force pass kernels/contact_force.
+//
+// The forces never depend on when the list was built: a particle sums the
+// pairs closer than the contact distance, in ascending partner index, and
+// every such pair is in any list that is still valid (no candidate has moved
+// more than half the skin since the build). So rebuilds, resumes and thread
+// counts leave the bits alone.
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "src/core/particle_store.hpp"
+#include "src/core/types.hpp"
+
+namespace mpsolid {
+
+struct ContactParameters {
+  double distance = 0;   // d (m): the pair force is zero at and beyond it
+  double stiffness = 0;  // k (N/m over the depth): force k (d - r) along the pair
+  double skin = 0;       // Verlet skin (m): the list holds pairs closer than d + skin
+  // The interpenetration check's distance (m): a pair closer stops the run.
+  double min_distance = 0;
+};
+
+// Candidates that never move relative to each other share a group (all walls
+// one, each rigid body its own) and are never paired; elastic ones have none.
+inline constexpr std::int32_t kNoContactGroup = -1;
+
+// The step at which some thread found the list stale: set in the force
+// pass, read by every thread after its barrier. A step number rather than a
+// flag, so that no thread has to clear it while another may still read it.
+// Copyable, so the solver state stays a value.
+struct StaleStep {
+  std::atomic<std::int64_t> step{-1};
+  StaleStep() = default;
+  StaleStep(const StaleStep& o) : step(o.step.load()) {}
+  StaleStep& operator=(const StaleStep& o) {
+    step.store(o.step.load());
+    return *this;
+  }
+};
+
+struct ContactState {
+  ContactParameters parameters;
+  // Storage indices of the candidates, ascending, and each one's group.
+  std::vector<std::uint32_t> candidates;
+  std::vector<std::int32_t> group;
+  // Candidates [0, first_moving) are walls: their forces are never needed.
+  std::size_t first_moving = 0;
+  // The Verlet list, both directions: candidate c's partners (storage
+  // indices, ascending) are partner[offsets[c] .. offsets[c + 1]).
+  std::vector<std::uint32_t> offsets;
+  std::vector<std::uint32_t> partner;
+  // Candidate positions when the list was built.
+  std::vector<double> built_x, built_y;
+  std::int64_t rebuilds = 0;
+  StaleStep stale;
+  // The current step's contact force on each candidate (N over the depth).
+  std::vector<double> force_x, force_y;
+
+  bool enabled() const { return !candidates.empty(); }
+  std::size_t size() const { return candidates.size(); }
+  // The candidates whose storage index lies in [block.begin, block.end).
+  // True when candidate a has moved more than half the skin since the
+  // build: a pair closer than d might then be missing from the list. (A
+  // little less than half, so rounding in the test never lets one through.)
+  bool moved_past_half_skin(const ParticleStore& p, std::size_t a) const {
+    const double dx = p.x[candidates[a]] - built_x[a];
+    const double dy = p.y[candidates[a]] - built_y[a];
+    const double half = 0.4999 * parameters.skin;
+    return !(dx * dx + dy * dy <= half * half);
+  }
+  Range candidates_in(Range block) const {
+    const auto first = std::lower_bound(candidates.begin(), candidates.end(), block.begin);
+    const auto last = std::lower_bound(first, candidates.end(), block.end);
+    return {static_cast<std::size_t>(first - candidates.begin()),
+            static_cast<std::size_t>(last - candidates.begin())};
+  }
+};
+
+}  // namespace mpsolid

@@ -1,0 +1,32 @@
+#pragma once
+// Contact at set-up (MODEL.md section 7): which particles are candidates,
+// their groups, the parameters in SI units, and the contact term of the
+// stable-step bound.
+#include <algorithm>
+
+#include "src/case/case_spec.hpp"
+#include "src/core/contact_state.hpp"
+#include "src/core/solver_state.hpp"
+
+namespace mpsolid {
+
+// The candidates are the surface particles of the case's contacting bodies:
+// those with fewer same-body bonds than a lattice interior particle has (the
+// outer two rows, since bonds reach 2.1 l0). The list is built at once.
+// Empty (disabled) when the case has no contact.
+ContactState make_contact(const CaseSpec& spec, const SolverState& s);
+
+// A bound on the squared angular frequency contact adds to the system:
+// 2 z k / m, with z the most lattice sites closer than d to any point and m
+// the lightest candidate that moves (Gershgorin's bound on the pair
+// stiffness, whose tangential part stays below k while pairs are farther
+// apart than d / 2, which the interpenetration check keeps). 0 without contact.
+double contact_omega_squared(const CaseSpec& spec, const SolverState& s);
+
+// How far the closest-pair diagnostic looks: d + skin, and at least 3 l0 (so
+// the gap between bodies shows in history.csv before they touch).
+inline double contact_search_reach(const CaseSpec& spec) {
+  return std::max(spec.contact.distance + spec.contact.skin, 3.0) * spec.l0;
+}
+
+}  // namespace mpsolid

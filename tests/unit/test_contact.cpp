@@ -1,0 +1,361 @@
+// Contact (MODEL.md section 7): the pair force against a plain all-pairs
+// reference, the candidates, the Verlet list's validity, and collisions:
+// blocks that rebound instead of passing through each other, conserving
+// momentum and angular momentum to round-off and energy to O(dt), the same
+// bits at 1, 2 and 3 threads and after a resume, through many list rebuilds.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "kernels/contact_force.hpp"
+#include "neighbor/contact_search.hpp"
+#include "src/core/parallel.hpp"
+#include "src/io/checkpoint.hpp"
+#include "src/solver/case_loader.hpp"
+#include "src/solver/contact_setup.hpp"
+#include "src/solver/simulation.hpp"
+#include "tests/support/test_cases.hpp"
+
+namespace mpsolid {
+namespace {
+
+// Two 8 x 8 rubber blocks (l0 = 1 mm) flying at each other; `offset` shifts
+// the right one up (m) for an oblique hit, `spin` spins it (rad/s).
+std::string blocks_toml(double offset = 0.0, double spin = 0.0, const std::string& dt = "2e-7",
+                        const std::string& contact = "") {
+  return R"(name = "blocks"
+model = "finite_strain"
+l0 = 0.001
+
+[materials.rubber]
+E = 2.8e6
+nu = 0.45
+rho = 1010.0
+
+[bodies.left]
+kind = "elastic"
+material = "rubber"
+x = [0.0, 0.008]
+y = [0.0, 0.008]
+velocity = [10.0, 0.0]
+
+[bodies.right]
+kind = "elastic"
+material = "rubber"
+x = [0.012, 0.020]
+y = [)" + fmt::format("{}, {}", offset, 0.008 + offset) +
+         R"(]
+velocity = [-10.0, 0.0]
+spin = )" +
+         fmt::format("{}", spin) +
+         R"(
+
+[contact]
+enabled = true
+)" + contact +
+         R"(
+
+[time]
+dt = )" + dt +
+         R"(
+end = 0.002
+
+[output]
+frame_interval = 1.0e-4
+)";
+}
+
+// An 8 x 8 block falling at 5 m/s onto a wall 3 rows thick.
+std::string drop_toml(double dt) {
+  return R"(name = "drop"
+model = "finite_strain"
+l0 = 0.001
+
+[materials.rubber]
+E = 2.8e6
+nu = 0.45
+rho = 1010.0
+
+[bodies.block]
+kind = "elastic"
+material = "rubber"
+x = [0.006, 0.014]
+y = [0.006, 0.014]
+velocity = [0.0, -5.0]
+
+[bodies.floor]
+kind = "wall"
+material = "rubber"
+x = [0.0, 0.020]
+y = [0.0, 0.003]
+
+[contact]
+enabled = true
+
+[time]
+dt = )" + fmt::format("{}", dt) +
+         R"(
+end = 0.002
+
+[output]
+frame_interval = 1.0e-4
+)";
+}
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+double total_energy(const Diagnostics& d) {
+  return d.kinetic_energy + d.strain_energy + d.contact_energy;
+}
+
+// Mean velocity of a body's particles (equal masses: its centre of mass).
+std::array<double, 2> body_velocity(const Simulation& sim, std::size_t body) {
+  const Range r = sim.state().body_ranges[body];
+  double vx = 0, vy = 0;
+  for (std::size_t i = r.begin; i < r.end; ++i) {
+    vx += sim.particles().vx[i];
+    vy += sim.particles().vy[i];
+  }
+  return {vx / static_cast<double>(r.size()), vy / static_cast<double>(r.size())};
+}
+
+TEST(Contact, PairForcesMatchAPlainAllPairsSumAndTheEnergyGradient) {
+  Simulation sim(load_case_text(blocks_toml(0.003), "blocks.toml"));
+  ParticleStore& p = sim.particles();
+  ContactState& c = sim.state().contact;
+  ASSERT_TRUE(c.enabled());
+  // Push the right block into the left one: many pairs closer than d.
+  const Range right = sim.state().body_ranges[1];
+  for (std::size_t i = right.begin; i < right.end; ++i) p.x[i] -= 4.3e-3;  // 0.7 l0 apart
+  build_contact_list(c, p, sim.state().bonds);
+  compute_contact_forces(c, p, {0, c.size()}, 0);
+  const double k = c.parameters.stiffness, d = c.parameters.distance;
+  int touching = 0;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const std::size_t i = c.candidates[a];
+    double fx = 0, fy = 0;
+    for (std::size_t b = 0; b < c.size(); ++b) {  // every other candidate, ascending
+      const std::size_t j = c.candidates[b];
+      if (j == i || p.body[j] == p.body[i]) continue;  // these blocks have no self-contact yet
+      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+      const double r = std::sqrt(dx * dx + dy * dy);
+      if (r >= d) continue;
+      ++touching;
+      fx += k * (d - r) / r * dx;
+      fy += k * (d - r) / r * dy;
+    }
+    EXPECT_TRUE(same_bits(c.force_x[a], fx) && same_bits(c.force_y[a], fy)) << "particle " << i;
+  }
+  EXPECT_GE(touching, 10);  // 5 rows overlap: 5 pairs, each seen from both ends
+  // The force is minus the gradient of the contact energy (central differences).
+  std::size_t a = c.candidates_in({right.begin, right.end}).begin;
+  while (a < c.size() && c.force_x[a] == 0.0) ++a;
+  ASSERT_LT(a, c.size());
+  const std::size_t i = c.candidates[a];
+  const auto energy = [&] {
+    double e = 0;
+    for (std::size_t b = 0; b < c.size(); ++b) e += contact_energy_share(c, p, b);
+    return e;
+  };
+  const double h = 1e-9, x = p.x[i];
+  p.x[i] = x + h;
+  const double plus = energy();
+  p.x[i] = x - h;
+  const double minus = energy();
+  p.x[i] = x;
+  EXPECT_NEAR(-(plus - minus) / (2 * h), c.force_x[a], 1e-6 * std::abs(c.force_x[a]) + 1e-3);
+  EXPECT_NE(c.force_x[a], 0.0);
+}
+
+TEST(Contact, CandidatesAreTheOuterTwoRowsOfEachBody) {
+  Simulation sim(load_case_text(drop_toml(2e-7), "drop.toml"));
+  const ContactState& c = sim.state().contact;
+  // Block 8 x 8: all but the inner 4 x 4. Floor 20 x 3: every particle.
+  EXPECT_EQ(c.size(), (64u - 16u) + 60u);
+  EXPECT_EQ(c.first_moving, 0u + 60u);  // walls are stored first
+  const ParticleStore& p = sim.particles();
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const std::size_t i = c.candidates[a];
+    if (p.kind[i] != Kind::elastic) continue;
+    const double cx = p.x0[i] - 0.010, cy = p.y0[i] - 0.010;
+    EXPECT_TRUE(std::max(std::abs(cx), std::abs(cy)) > 0.002) << "an inner particle: " << i;
+  }
+}
+
+TEST(Contact, ForcesDoNotDependOnWhenTheListWasBuilt) {
+  Simulation sim(load_case_text(blocks_toml(0.002), "blocks.toml"));
+  sim.advance(1800);  // in contact
+  ContactState& c = sim.state().contact;
+  const ParticleStore& p = sim.particles();
+  compute_contact_forces(c, p, {c.first_moving, c.size()}, 1);
+  ASSERT_NE(c.stale.step.load(), 1) << "the list must be valid here";
+  const std::vector<double> fx = c.force_x, fy = c.force_y;
+  EXPECT_GT(std::count_if(fx.begin(), fx.end(), [](double f) { return f != 0; }), 4);
+  ContactState fresh = c;
+  fresh.parameters.skin *= 4;  // another list: more far pairs
+  build_contact_list(fresh, p, sim.state().bonds);
+  EXPECT_GT(fresh.partner.size(), c.partner.size());
+  compute_contact_forces(fresh, p, {fresh.first_moving, fresh.size()}, 2);
+  for (std::size_t a = c.first_moving; a < c.size(); ++a)
+    EXPECT_TRUE(same_bits(fx[a], fresh.force_x[a]) && same_bits(fy[a], fresh.force_y[a]));
+}
+
+TEST(Contact, HeadOnBlocksReboundConservingMomentumAndNeverPassThrough) {
+  Simulation sim(load_case_text(blocks_toml(), "blocks.toml"));
+  const double mass = 64 * 1010.0 * 1e-6;
+  const double p0 = mass * 10.0;  // each block's momentum
+  double closest = 1;
+  for (int k = 0; k < 50; ++k) {
+    sim.advance(200);
+    const Diagnostics d = sim.diagnostics();
+    closest = std::min(closest, d.contact_min_distance);
+    EXPECT_LT(std::abs(d.momentum_x), 1e-12 * p0);
+    EXPECT_LT(std::abs(d.momentum_y), 1e-12 * p0);
+    // Never through: the left block stays left of the right one.
+    const ParticleStore& p = sim.particles();
+    const Range l = sim.state().body_ranges[0], r = sim.state().body_ranges[1];
+    EXPECT_LT(*std::max_element(p.x.begin() + l.begin, p.x.begin() + l.end),
+              *std::min_element(p.x.begin() + r.begin, p.x.begin() + r.end));
+  }
+  EXPECT_LT(closest, 1e-3);  // they did touch
+  EXPECT_GT(closest, 0.5e-3);
+  EXPECT_LT(body_velocity(sim, 0)[0], -5.0);  // rebounded
+  EXPECT_GT(body_velocity(sim, 1)[0], 5.0);
+  EXPECT_GT(sim.state().contact.rebuilds, 1);
+}
+
+// The largest |KE + PE + contact energy - E0| / E0 over a run of `steps`.
+double energy_error(const std::string& toml, std::int64_t steps, int samples) {
+  Simulation sim(load_case_text(toml, "case.toml"));
+  const double e0 = total_energy(sim.diagnostics());
+  double worst = 0;
+  for (int k = 0; k < samples; ++k) {
+    sim.advance(steps / samples);
+    worst = std::max(worst, std::abs(total_energy(sim.diagnostics()) - e0) / e0);
+  }
+  return worst;
+}
+
+TEST(Contact, EnergyErrorHalvesWithTheStep) {
+  const double coarse = energy_error(blocks_toml(0.003, 0.0, "4e-7"), 5000, 50);
+  const double fine = energy_error(blocks_toml(0.003, 0.0, "2e-7"), 10000, 50);
+  EXPECT_LT(coarse, 0.02);
+  EXPECT_GT(coarse / fine, 1.6) << coarse << " " << fine;
+  EXPECT_LT(coarse / fine, 2.6) << coarse << " " << fine;
+}
+
+TEST(Contact, ObliqueSpinningHitConservesAngularMomentum) {
+  Simulation sim(load_case_text(blocks_toml(0.005, 300.0), "blocks.toml"));
+  const Diagnostics start = sim.diagnostics();
+  double contact_energy = 0;
+  for (int k = 0; k < 50; ++k) {
+    sim.advance(200);
+    const Diagnostics d = sim.diagnostics();
+    contact_energy = std::max(contact_energy, d.contact_energy);
+    EXPECT_NEAR(d.angular_momentum, start.angular_momentum,
+                1e-12 * std::abs(start.angular_momentum));
+    EXPECT_NEAR(d.momentum_x, start.momentum_x, 1e-15);
+    EXPECT_NEAR(d.momentum_y, start.momentum_y, 1e-15);
+  }
+  EXPECT_GT(contact_energy, 0.0);
+}
+
+TEST(Contact, BlockDroppedOnAWallComesBack) {
+  Simulation sim(load_case_text(drop_toml(2e-7), "drop.toml"));
+  const double e0 = total_energy(sim.diagnostics());
+  const double v0 = body_velocity(sim, 0)[1];
+  sim.advance(10000);
+  const Diagnostics d = sim.diagnostics();
+  const double v1 = body_velocity(sim, 0)[1];
+  EXPECT_EQ(d.contact_energy, 0.0);  // off the floor again
+  // Going up; a quarter of the speed stays in the block's vibrations.
+  EXPECT_GT(v1, 0.7 * -v0);
+  EXPECT_NEAR(total_energy(d), e0, 0.01 * e0);
+  const Range block = sim.state().body_ranges[0];
+  const ParticleStore& p = sim.particles();
+  EXPECT_GT(*std::min_element(p.y.begin() + block.begin, p.y.begin() + block.end), 0.003);
+}
+
+// Runs the spinning oblique hit with a thin skin (many rebuilds) at
+// `threads`, stopping after `first` steps to resume a fresh simulation from
+// the captured state when `resume`.
+struct Outcome {
+  ParticleStore particles;
+  Diagnostics diagnostics;
+  std::int64_t rebuilds = 0;
+};
+Outcome run_blocks(int threads, bool resume) {
+  set_thread_count(threads);
+  const CaseSpec spec = load_case_text(blocks_toml(0.004, 500.0, "2e-7", "skin = 0.05"), "b.toml");
+  Simulation sim(spec);
+  sim.advance(4000);
+  Outcome out;
+  if (resume) {
+    Checkpoint c = capture_state(sim.state());
+    c.bond_hash = sim.state().bonds.hash();
+    Simulation resumed(spec);
+    restore_state(resumed.state(), c, "test");
+    resumed.advance(4000);
+    out = {resumed.particles(), resumed.diagnostics(), resumed.state().contact.rebuilds};
+  } else {
+    sim.advance(4000);
+    out = {sim.particles(), sim.diagnostics(), sim.state().contact.rebuilds};
+  }
+  set_thread_count(available_cores());
+  return out;
+}
+
+TEST(Contact, SameBitsAt1To3ThreadsAndAfterAResumeThroughManyRebuilds) {
+  const Outcome one = run_blocks(1, false);
+  EXPECT_GT(one.rebuilds, 30);
+  EXPECT_GT(one.diagnostics.contact_energy + one.diagnostics.kinetic_energy, 0.0);
+  for (const auto& [threads, resume] : {std::pair{2, false}, {3, false}, {1, true}, {2, true}}) {
+    const Outcome other = run_blocks(threads, resume);
+    EXPECT_TRUE(testing::same_bits(one.particles, other.particles))
+        << threads << " threads, resumed: " << resume;
+    EXPECT_TRUE(same_bits(one.diagnostics.contact_energy, other.diagnostics.contact_energy));
+    EXPECT_TRUE(same_bits(one.diagnostics.strain_energy, other.diagnostics.strain_energy));
+  }
+}
+
+TEST(Contact, InterpenetrationStopsTheRunNamingThePair) {
+  // Far too soft a contact: the blocks sink into each other.
+  Simulation sim(load_case_text(blocks_toml(0.0, 0.0, "2e-7", "stiffness = 1.0e3"), "b.toml"));
+  StabilityVerdict v;
+  for (int k = 0; k < 100 && v.ok; ++k) {
+    sim.advance(100);
+    v = sim.check_stability();
+  }
+  ASSERT_FALSE(v.ok);
+  EXPECT_NE(v.criterion.find("interpenetration"), std::string::npos) << v.criterion;
+  EXPECT_TRUE(v.has_neighbor);
+  EXPECT_NE(sim.particles().body[v.particle], sim.particles().body[v.neighbor]);
+  EXPECT_LT(v.value, v.limit);
+}
+
+TEST(Contact, AutomaticStepAccountsForTheContactStiffness) {
+  const std::string toml = blocks_toml(0.0, 0.0, "\"auto\"");
+  const auto dt = [&](const std::vector<std::string>& overrides) {
+    return Simulation(load_case_text(toml, "b.toml", overrides)).spec().dt;
+  };
+  const double with = dt({}), without = dt({"contact.enabled=false"});
+  EXPECT_LT(with, without);
+  EXPECT_GT(with, 0.3 * without);
+  EXPECT_LT(dt({"contact.stiffness=1e10"}), 0.5 * with);
+}
+
+TEST(Contact, ACaseWithoutContactHasNoCandidates) {
+  Simulation sim(testing::rod_case());
+  EXPECT_FALSE(sim.state().contact.enabled());
+  EXPECT_EQ(sim.diagnostics().contact_energy, 0.0);
+}
+
+}  // namespace
+}  // namespace mpsolid
