@@ -114,6 +114,15 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                              {"omega_max", e.omega_max},
                              {"iterations", e.iterations},
                              {"converged", e.converged}};
+  // Contact's candidates and Verlet list (rebuilds counted since this
+  // segment's set-up or resume, the build at set-up included).
+  if (const ContactState& c = in.state.contact; c.enabled())
+    report["contact"] = {{"candidates", c.size()},
+                         {"list_entries", c.partner.size()},
+                         {"rebuilds", c.rebuilds},
+                         {"distance", c.parameters.distance},
+                         {"stiffness", c.parameters.stiffness},
+                         {"skin", c.parameters.skin}};
   if (!in.spec.notes.empty()) report["notes"] = in.spec.notes;
   if (!facts.diagnosis_json.is_null()) report["diagnosis"] = facts.diagnosis_json;
   return report.dump(2) + "\n";

@@ -19,7 +19,7 @@ done
 runs=(
   "paper|cases/shock_rod.toml|time.end=2e-4 output.frame_interval=5e-5"
   "paper_conservative|cases/shock_rod.toml|model=paper_conservative time.end=2e-4 output.frame_interval=5e-5"
-  "finite_strain_55kN|cases/shock_rod_55kN.toml|time.end=3e-4 output.frame_interval=5e-5"
+  "finite_strain_55kN|cases/shock_rod_55kN_short_wall.toml|time.end=3e-4 output.frame_interval=5e-5"
   "spinning_plate|cases/spinning_plate.toml|time.end=0.02 output.frame_interval=0.005 output.history_interval=0.001"
   "oscillating_plate|cases/oscillating_plate.toml|time.end=0.02 output.frame_interval=0.005"
   "oscillating_plate_linear|cases/oscillating_plate_linear.toml|time.end=0.02 output.frame_interval=0.005"

@@ -42,7 +42,7 @@ import numpy as np
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PLOT = os.path.join(ROOT, "tools", "plot.py")
 CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
-CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN.toml")
+CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure"}
 failures = []

@@ -7,6 +7,7 @@
 #include <optional>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "src/core/types.hpp"
@@ -497,6 +498,37 @@ TEST(CaseErrors, LoadOnAWall) {
                      {"bad.toml", "loads.shock.body", "wall", "walls do not move"});
 }
 
+TEST(CaseErrors, ContactKeysOutOfRange) {
+  for (const auto& [set, key, allowed] :
+       {std::tuple{"contact.distance=0", "contact.distance", "(0, 2] lattice spacings"},
+        {"contact.distance=2.5", "contact.distance", "(0, 2] lattice spacings"},
+        {"contact.skin=0", "contact.skin", "(0, 2] lattice spacings"},
+        {"contact.stiffness=-1e6", "contact.stiffness", "(0, inf) Pa"},
+        {"contact.min_distance=1", "contact.min_distance", "[0, 1) contact distances"}})
+    EXPECT_INPUT_ERROR(base_toml(), {"contact.", key, allowed}, {set});
+  EXPECT_INPUT_ERROR(base_toml(), {"contact.friction", "unknown key", "distance"},
+                     {"contact.friction=0.3"});
+}
+
+TEST(CaseErrors, ContactBodiesMustBeKnownDistinctAndNotOnlyWalls) {
+  EXPECT_INPUT_ERROR(base_toml(), {"contact.bodies", "unknown body 'rdo'", "plate, rod, wall"},
+                     {"contact.bodies=[\"rdo\"]"});
+  EXPECT_INPUT_ERROR(base_toml(), {"contact.bodies", "twice"},
+                     {"contact.bodies=[\"rod\", \"rod\"]"});
+  EXPECT_INPUT_ERROR(base_toml(), {"contact.bodies", "non-empty array"}, {"contact.bodies=[]"});
+  EXPECT_INPUT_ERROR(base_toml(), {"contact.bodies", "only walls"}, {"contact.bodies=[\"wall\"]"});
+  const CaseSpec two =
+      load_case_text(base_toml(), "ok.toml", {"contact.bodies=[\"wall\", \"rod\"]"});
+  EXPECT_TRUE(two.contact.enabled);
+  EXPECT_EQ(two.contact.bodies, (std::vector<int>{1, 2}));  // rod, wall (name order)
+  // The default stiffness: the rubber's lambda + mu.
+  const Material& rubber = two.materials.at(0);
+  EXPECT_DOUBLE_EQ(two.contact.stiffness, rubber.lambda() + rubber.mu());
+  const CaseSpec off = load_case_text(base_toml(), "ok.toml", {"contact.enabled=false"});
+  EXPECT_FALSE(off.contact.enabled);
+  EXPECT_FALSE(load_case_text(base_toml(), "ok.toml").contact.enabled);
+}
+
 TEST(CaseErrors, BodyWithAnUnknownMaterial) {
   EXPECT_INPUT_ERROR(
       edit("kind = \"elastic\"\nmaterial = \"rubber\"", "kind = \"elastic\"\nmaterial = \"steel\""),
@@ -623,6 +655,15 @@ TEST(GoodCases, ShippedCasesParse) {
   EXPECT_DOUBLE_EQ(strong.loads[0].force[0], 55900.0);
   EXPECT_EQ(strong.step_count(), 1000000);
   EXPECT_EQ(strong.steps_per_frame(), 100000);
+  // The experiment's geometry: contact on, a wall three times the rod's height.
+  EXPECT_TRUE(strong.contact.enabled);
+  EXPECT_EQ(strong.contact.bodies.size(), 3u);
+  EXPECT_DOUBLE_EQ(strong.bodies.at(2).y[1], 0.060);
+
+  const CaseSpec paper_geometry = load_case(shipped("shock_rod_55kN_short_wall.toml"));
+  EXPECT_FALSE(paper_geometry.contact.enabled);
+  EXPECT_DOUBLE_EQ(paper_geometry.bodies.at(2).y[1], 0.020);
+  EXPECT_TRUE(load_case(shipped("colliding_blocks.toml")).contact.enabled);
 }
 
 TEST(GoodCases, OverridesApply) {
@@ -694,6 +735,14 @@ void expect_same_case(const CaseSpec& a, const CaseSpec& b) {
   EXPECT_EQ(a.end, b.end);
   EXPECT_EQ(a.frame_interval, b.frame_interval);
   EXPECT_EQ(a.step_count(), b.step_count());
+  EXPECT_EQ(a.contact.enabled, b.contact.enabled);
+  if (a.contact.enabled) {
+    EXPECT_EQ(a.contact.distance, b.contact.distance);
+    EXPECT_EQ(a.contact.skin, b.contact.skin);
+    EXPECT_EQ(a.contact.stiffness, b.contact.stiffness);
+    EXPECT_EQ(a.contact.min_distance, b.contact.min_distance);
+    EXPECT_EQ(a.contact.bodies, b.contact.bodies);
+  }
   EXPECT_EQ(a.steps_per_frame(), b.steps_per_frame());
   ASSERT_EQ(a.materials.size(), b.materials.size());
   for (std::size_t k = 0; k < a.materials.size(); ++k) {
@@ -744,6 +793,8 @@ TEST(GoodCases, ResolvedTomlReadsBackAsTheSameCase) {
   for (const Strings& overrides :
        {Strings{}, Strings{"l0=0.001", "time.end=0.002", "loads.shock.force=[55900.0, 0.0]"},
         Strings{"time.dt=3e-9", "depth=0.01"},
+        Strings{"contact.enabled=true", "contact.bodies=[\"rod\", \"wall\"]", "contact.skin=0.3",
+                "contact.stiffness=2.5e7"},
         Strings{"time.dt=\"auto\"", "time.safety=0.3", "output.history_interval=1e-4",
                 "probes.tip.at=[0.099, 0.0]", "bodies.rod.velocity=[1.0, -2.0]",
                 "bodies.rod.spin=3.0", "bodies.rod.hold=\"y\"",
@@ -767,6 +818,7 @@ TEST(GoodCases, ResolvedTomlReadsBackWithUnusualNames) {
   for (const char* from : {"material = \"rubber\"\nx = [0.0", "material = \"rubber\"\nx = [-0.006",
                            "material = \"rubber\"\nx = [0.100"})
     text = edit(text, from, edit(from, "\"rubber\"", "\"rubber.soft\""));
+  text += "\n[contact]\nbodies = [\"the rod\", \"wall\"]\n";
   CaseSpec original;
   try {
     original = load_case_text(text, "odd.toml");
