@@ -167,6 +167,20 @@ class SameBits(TempDirTest):
             self.assertTrue(np.array_equal(getattr(whole, name), getattr(pieces, name)), name)
         self.assertEqual(whole.diagnostics(), pieces.diagnostics())
 
+    def test_contact_shows_in_the_diagnostics(self):
+        case = mpsolid.Case.load(str(ROOT / "cases" / "colliding_blocks.toml")).set("time.end", 2e-3)
+        sim = mpsolid.Simulation(case, threads=2)
+        start = sim.diagnostics()
+        self.assertEqual(start["contact_energy"], 0.0)
+        self.assertAlmostEqual(start["contact_min_distance"], 5 ** 0.5 * 1e-3, places=12)
+        touched = 0.0
+        while sim.time < 1.5e-3:  # the blocks meet near 1 ms
+            sim.advance(20)
+            touched = max(touched, sim.diagnostics()["contact_energy"])
+        self.assertGreater(touched, 0.0)
+        no_contact = mpsolid.Simulation(coarse_case(), threads=1)
+        self.assertEqual(no_contact.diagnostics()["contact_energy"], 0.0)
+
     def test_run_to(self):
         sim = mpsolid.Simulation(coarse_case(), threads=1)
         sim.run_to(1.5e-6 + 1e-12)  # 150.0001 steps of 10 ns: the first step at or after is 151
