@@ -24,19 +24,36 @@
 namespace mpsolid {
 namespace {
 
-// Two 8 x 8 rubber blocks (l0 = 1 mm) flying at each other; `offset` shifts
-// the right one up (m) for an oblique hit, `spin` spins it (rad/s).
-std::string blocks_toml(double offset = 0.0, double spin = 0.0, const std::string& dt = "2e-7",
-                        const std::string& contact = "") {
-  return R"(name = "blocks"
-model = "finite_strain"
+// A finite_strain case at l0 = 1 mm with rubber, the given bodies and
+// contact on (with extra [contact] keys), run for 2 ms at dt (TOML text).
+std::string contact_case(const std::string& bodies, const std::string& dt,
+                         const std::string& contact = "") {
+  return fmt::format(R"(model = "finite_strain"
 l0 = 0.001
 
 [materials.rubber]
 E = 2.8e6
 nu = 0.45
 rho = 1010.0
+{}
+[contact]
+enabled = true
+{}
+[time]
+dt = {}
+end = 0.002
 
+[output]
+frame_interval = 1.0e-4
+)",
+                     bodies, contact, dt);
+}
+
+// Two 8 x 8 rubber blocks flying at each other at 10 m/s; `offset` shifts
+// the right one up (m) for an oblique hit, `spin` spins it (rad/s).
+std::string blocks_toml(double offset = 0.0, double spin = 0.0, const std::string& dt = "2e-7",
+                        const std::string& contact = "") {
+  return contact_case(fmt::format(R"(
 [bodies.left]
 kind = "elastic"
 material = "rubber"
@@ -48,39 +65,17 @@ velocity = [10.0, 0.0]
 kind = "elastic"
 material = "rubber"
 x = [0.012, 0.020]
-y = [)" + fmt::format("{}, {}", offset, 0.008 + offset) +
-         R"(]
+y = [{}, {}]
 velocity = [-10.0, 0.0]
-spin = )" +
-         fmt::format("{}", spin) +
-         R"(
-
-[contact]
-enabled = true
-)" + contact +
-         R"(
-
-[time]
-dt = )" + dt +
-         R"(
-end = 0.002
-
-[output]
-frame_interval = 1.0e-4
-)";
+spin = {}
+)",
+                                  offset, 0.008 + offset, spin),
+                      dt, contact);
 }
 
 // An 8 x 8 block falling at 5 m/s onto a wall 3 rows thick.
-std::string drop_toml(double dt) {
-  return R"(name = "drop"
-model = "finite_strain"
-l0 = 0.001
-
-[materials.rubber]
-E = 2.8e6
-nu = 0.45
-rho = 1010.0
-
+std::string drop_toml(const std::string& dt) {
+  return contact_case(R"(
 [bodies.block]
 kind = "elastic"
 material = "rubber"
@@ -93,18 +88,8 @@ kind = "wall"
 material = "rubber"
 x = [0.0, 0.020]
 y = [0.0, 0.003]
-
-[contact]
-enabled = true
-
-[time]
-dt = )" + fmt::format("{}", dt) +
-         R"(
-end = 0.002
-
-[output]
-frame_interval = 1.0e-4
-)";
+)",
+                      dt);
 }
 
 bool same_bits(double a, double b) {
@@ -175,7 +160,7 @@ TEST(Contact, PairForcesMatchAPlainAllPairsSumAndTheEnergyGradient) {
 }
 
 TEST(Contact, CandidatesAreTheOuterTwoRowsOfEachBody) {
-  Simulation sim(load_case_text(drop_toml(2e-7), "drop.toml"));
+  Simulation sim(load_case_text(drop_toml("2e-7"), "drop.toml"));
   const ContactState& c = sim.state().contact;
   // Block 8 x 8: all but the inner 4 x 4. Floor 20 x 3: every particle.
   EXPECT_EQ(c.size(), (64u - 16u) + 60u);
@@ -268,7 +253,7 @@ TEST(Contact, ObliqueSpinningHitConservesAngularMomentum) {
 }
 
 TEST(Contact, BlockDroppedOnAWallComesBack) {
-  Simulation sim(load_case_text(drop_toml(2e-7), "drop.toml"));
+  Simulation sim(load_case_text(drop_toml("2e-7"), "drop.toml"));
   const double e0 = total_energy(sim.diagnostics());
   const double v0 = body_velocity(sim, 0)[1];
   sim.advance(10000);
