@@ -10,30 +10,44 @@
 namespace mpsolid {
 
 namespace {
-// The candidates' pairs closer than `cutoff` that may touch, as candidate
-// indices in compressed rows (both ends, ascending: candidates are sorted by
-// storage index, so this is ascending storage index too).
+// Candidates a and b may touch: not in one group, not bonded.
+bool may_touch(const ContactState& c, const BondTable& bonds, std::size_t a, std::size_t b) {
+  if (c.group[a] != kNoContactGroup && c.group[a] == c.group[b]) return false;
+  const std::size_t i = c.candidates[a];
+  const auto row = bonds.neighbor.begin();
+  return !std::binary_search(row + bonds.begin(i), row + bonds.end(i), c.candidates[b]);
+}
+
+// The candidates' current positions and their pairs closer than `cutoff`
+// (candidate indices, compressed rows, both ends, ascending: candidates are
+// sorted by storage index, so this is ascending storage index too).
+struct NearCandidates {
+  std::vector<double> x, y;
+  NeighborLists lists;
+};
+NearCandidates near_candidates(const ContactState& c, const ParticleStore& p, double cutoff) {
+  NearCandidates near;
+  near.x.resize(c.size());
+  near.y.resize(c.size());
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    near.x[a] = p.x[c.candidates[a]];
+    near.y[a] = p.y[c.candidates[a]];
+  }
+  near.lists = find_neighbors_cell_list(near.x, near.y, cutoff);
+  return near;
+}
+
+// Those of the pairs that may touch.
 NeighborLists touching_pairs(const ContactState& c, const ParticleStore& p, const BondTable& bonds,
                              double cutoff) {
   const std::size_t n = c.size();
-  std::vector<double> x(n), y(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    x[k] = p.x[c.candidates[k]];
-    y[k] = p.y[c.candidates[k]];
-  }
-  NeighborLists near = find_neighbors_cell_list(x, y, cutoff);
-  const auto bonded = [&](std::size_t i, std::size_t j) {
-    const auto row = bonds.neighbor.begin();
-    return std::binary_search(row + bonds.begin(i), row + bonds.end(i),
-                              static_cast<std::uint32_t>(j));
-  };
+  const NeighborLists near = near_candidates(c, p, cutoff).lists;
   NeighborLists out;
   out.offsets.assign(n + 1, 0);
   for (std::size_t a = 0; a < n; ++a) {
     for (std::uint32_t k = near.offsets[a]; k < near.offsets[a + 1]; ++k) {
       const std::uint32_t b = near.indices[k];
-      const bool same_group = c.group[a] != kNoContactGroup && c.group[a] == c.group[b];
-      if (!same_group && !bonded(c.candidates[a], c.candidates[b])) out.indices.push_back(b);
+      if (may_touch(c, bonds, a, b)) out.indices.push_back(b);
     }
     out.offsets[a + 1] = static_cast<std::uint32_t>(out.indices.size());
   }
@@ -68,16 +82,17 @@ ClosestContact closest_contact(const ContactState& c, const ParticleStore& p,
                                const BondTable& bonds, double cutoff) {
   ClosestContact best;
   if (!c.enabled()) return best;
-  const NeighborLists pairs = touching_pairs(c, p, bonds, cutoff);
+  const NearCandidates near = near_candidates(c, p, cutoff);
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::size_t a = 0; a < c.size(); ++a)
-    for (std::uint32_t k = pairs.offsets[a]; k < pairs.offsets[a + 1]; ++k) {
-      const std::size_t i = c.candidates[a], j = c.candidates[pairs.indices[k]];
-      if (j < i) continue;  // each pair once, from its lower end
-      const double d2 = squared_distance(p.x[i], p.y[i], p.x[j], p.y[j]);
-      if (d2 < best_d2) {
+    for (std::uint32_t k = near.lists.offsets[a]; k < near.lists.offsets[a + 1]; ++k) {
+      const std::uint32_t b = near.lists.indices[k];
+      if (b < a) continue;  // each pair once, from its lower end
+      const double d2 = squared_distance(near.x[a], near.y[a], near.x[b], near.y[b]);
+      // Only a pair that would be the closest is checked for a bond.
+      if (d2 < best_d2 && may_touch(c, bonds, a, b)) {
         best_d2 = d2;
-        best = {true, std::sqrt(d2), i, j};
+        best = {true, std::sqrt(d2), c.candidates[a], c.candidates[b]};
       }
     }
   return best;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,41 @@ TEST(Contact, PairForcesMatchAPlainAllPairsSumAndTheEnergyGradient) {
   p.x[i] = x;
   EXPECT_NEAR(-(plus - minus) / (2 * h), c.force_x[a], 1e-6 * std::abs(c.force_x[a]) + 1e-3);
   EXPECT_NE(c.force_x[a], 0.0);
+}
+
+TEST(Contact, ClosestPairIsTheAllPairsMinimumOfPairsThatMayTouch) {
+  Simulation sim(load_case_text(drop_toml("2e-7"), "drop.toml"));
+  const ParticleStore& p = sim.particles();
+  const ContactState& c = sim.state().contact;
+  const BondTable& bonds = sim.state().bonds;
+  const auto brute_force = [&] {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < c.size(); ++a)
+      for (std::size_t b = a + 1; b < c.size(); ++b) {
+        const std::size_t i = c.candidates[a], j = c.candidates[b];
+        if (p.kind[i] == Kind::wall && p.kind[j] == Kind::wall) continue;
+        if (std::find(bonds.neighbor.begin() + bonds.begin(i),
+                      bonds.neighbor.begin() + bonds.end(i),
+                      j) != bonds.neighbor.begin() + bonds.end(i))
+          continue;
+        best = std::min(best, std::hypot(p.x[i] - p.x[j], p.y[i] - p.y[j]));
+      }
+    return best;
+  };
+  // At rest: the block's own surface pairs two sites along and one across.
+  ClosestContact closest = closest_contact(c, p, bonds, 0.01);
+  ASSERT_TRUE(closest.found);
+  EXPECT_NEAR(closest.distance, std::sqrt(5.0) * 1e-3, 1e-15);
+  EXPECT_NEAR(closest.distance, brute_force(), 1e-15);
+  EXPECT_EQ(p.body[closest.i], p.body[closest.j]);
+  // On the floor: the block's bottom and the floor's top row.
+  sim.advance(4000);
+  closest = closest_contact(c, p, bonds, 0.01);
+  ASSERT_TRUE(closest.found);
+  EXPECT_NEAR(closest.distance, brute_force(), 1e-15);
+  EXPECT_NE(p.body[closest.i], p.body[closest.j]);
+  EXPECT_LT(closest.distance, 1.2e-3);
+  EXPECT_FALSE(closest_contact(c, p, bonds, 0.5 * closest.distance).found);
 }
 
 TEST(Contact, CandidatesAreTheOuterTwoRowsOfEachBody) {
