@@ -88,6 +88,7 @@ inline StabilityVerdict check_interpenetration(const ContactState& c, const Part
   if (!(v.value < v.limit)) return v;
   v.ok = false;
   v.has_neighbor = true;
+  v.neighbor_role = "too close to (not bonded)";
   v.criterion = fmt::format(
       "interpenetration: two particles that are not bonded are {:.4g} m apart, closer than {:g} "
       "of the contact distance {:.4g} m (contact.min_distance); the contact is too soft for this "

@@ -48,7 +48,8 @@ std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
       "check at step {}): {}",
       v.criterion, sim.time(), sim.step(), sim.spec().stability.check_interval, last_good_step,
       describe_particle(sim, v.particle));
-  if (v.has_neighbor) text += ", bonded to " + describe_particle(sim, v.neighbor);
+  if (v.has_neighbor)
+    text += fmt::format(", {} {}", v.neighbor_role, describe_particle(sim, v.neighbor));
   return text;
 }
 

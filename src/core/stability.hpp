@@ -17,6 +17,9 @@ struct StabilityVerdict {
   std::size_t particle = 0;  // storage index of the particle where it failed
   std::size_t neighbor = 0;  // its bond partner, for a per-bond criterion
   bool has_neighbor = false;
+  // How the message names the neighbour: its bond partner, or the particle
+  // that came too close (contact).
+  const char* neighbor_role = "bonded to";
   double value = 0, limit = 0;
 };
 

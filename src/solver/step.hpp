@@ -1,6 +1,6 @@
 #pragma once
 // The time step, in order (MODEL.md section 2). Holds no physics itself:
-// strain pass -> (loads switch on) force/torque pass -> loads, holds,
+// (contact pass ->) strain pass -> (loads switch on) force/torque pass -> loads, holds,
 // integrate, half angles -> rigid-body projection.
 //
 // A batch of steps runs in one parallel region (run_in_team): each phase is

@@ -345,6 +345,11 @@ expect_exit() {
   fi
 }
 
+# A contact too soft for the impact: the interpenetration check stops the
+# run (exit 3), naming the pair that came too close.
+expect_exit interpenetration 3 "too close to (not bonded) particle" -- \
+  run cases/colliding_blocks.toml --set contact.stiffness=1e4 --out "$TMP/soft_contact" --threads 1
+
 touch "$TMP/a_file"
 expect_exit out_is_file 2 "$TMP/a_file: the output folder is a file" -- \
   run "$CASE" --set time.end=1e-7 --out "$TMP/a_file" --threads 1
