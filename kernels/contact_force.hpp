@@ -1,5 +1,5 @@
 #pragma once
-// The contact force pass (MODEL.md section 7): a frictionless repulsion
+// The contact force pass (MODEL.md section 8): a frictionless repulsion
 // between candidates closer than the contact distance d, from the potential
 // U(r) = k/2 (d - r)^2 (zero, with zero force, at r = d). Each candidate
 // gathers its own pairs in ascending partner order, so the force on j from i
@@ -7,6 +7,8 @@
 // the same bits. A pair at or beyond d adds nothing (not even +0.0), so the
 // sums do not depend on which farther pairs the Verlet list holds.
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -44,6 +46,10 @@ inline void compute_contact_forces(ContactState& c, const ParticleStore& p, Rang
     }
     double fx = 0, fy = 0;
     for_each_touching(c, p, a, [&](std::size_t, double dx, double dy, double r) {
+      if (r < c.parameters.min_distance) {
+        std::int64_t none = -1;  // keeps the first step: steps only grow
+        c.too_close.step.compare_exchange_strong(none, step, std::memory_order_relaxed);
+      }
       const double push = k * (d - r) / r;
       fx += push * dx;
       fy += push * dy;
@@ -71,29 +77,40 @@ inline double contact_energy_share(const ContactState& c, const ParticleStore& p
   return e;
 }
 
-// The interpenetration check: the closest touching pair (the list must be
-// valid) against the case's smallest allowed distance.
+// The interpenetration check: a pair closer than min_distance now, or in a
+// step since the last check (the contact pass marks the first such step).
+// Names the closest touching pair now (the list must be valid); when none
+// touches any more, has_neighbor is false and the caller names the pair.
 inline StabilityVerdict check_interpenetration(const ContactState& c, const ParticleStore& p) {
   StabilityVerdict v;
-  v.value = c.parameters.distance;
+  v.value = std::numeric_limits<double>::infinity();
   for (std::size_t a = c.first_moving; a < c.size(); ++a)
     for_each_touching(c, p, a, [&](std::size_t j, double, double, double r) {
       if (r < v.value) {
         v.value = r;
         v.particle = c.candidates[a];
         v.neighbor = j;
+        v.has_neighbor = true;
       }
     });
   v.limit = c.parameters.min_distance;
-  if (!(v.value < v.limit)) return v;
+  const std::int64_t when = c.too_close.step.load(std::memory_order_relaxed);
+  if (!(v.value < v.limit) && when < 0) return v;
   v.ok = false;
-  v.has_neighbor = true;
   v.neighbor_role = "too close to (not bonded)";
-  v.criterion = fmt::format(
-      "interpenetration: two particles that are not bonded are {:.4g} m apart, closer than {:g} "
-      "of the contact distance {:.4g} m (contact.min_distance); the contact is too soft for this "
-      "impact (raise contact.stiffness) or the step too large",
-      v.value, v.limit / c.parameters.distance, c.parameters.distance);
+  const std::string limit =
+      fmt::format("closer than {:g} of the contact distance {:.4g} m (contact.min_distance)",
+                  v.limit / c.parameters.distance, c.parameters.distance);
+  const char* advice =
+      "the contact is too soft for this impact (raise contact.stiffness) or the step too large";
+  if (v.value < v.limit)
+    v.criterion = fmt::format(
+        "interpenetration: two particles that are not bonded are {:.4g} m apart, {}; {}", v.value,
+        limit, advice);
+  else
+    v.criterion =
+        fmt::format("interpenetration: two particles that are not bonded came {} at step {}; {}",
+                    limit, when, advice);
   return v;
 }
 

@@ -20,20 +20,42 @@ bool may_touch(const ContactState& c, const BondTable& bonds, std::size_t a, std
 
 // The candidates' current positions and their pairs closer than `cutoff`
 // (candidate indices, compressed rows, both ends, ascending: candidates are
-// sorted by storage index, so this is ascending storage index too).
+// sorted by storage index, so this is ascending storage index too). A
+// candidate whose position is not finite has no pairs: the run's finite
+// check reports it; the search must not fail first.
 struct NearCandidates {
   std::vector<double> x, y;
   NeighborLists lists;
 };
 NearCandidates near_candidates(const ContactState& c, const ParticleStore& p, double cutoff) {
   NearCandidates near;
-  near.x.resize(c.size());
-  near.y.resize(c.size());
+  std::vector<std::uint32_t> finite;
   for (std::size_t a = 0; a < c.size(); ++a) {
-    near.x[a] = p.x[c.candidates[a]];
-    near.y[a] = p.y[c.candidates[a]];
+    const double x = p.x[c.candidates[a]], y = p.y[c.candidates[a]];
+    near.x.push_back(x);
+    near.y.push_back(y);
+    if (std::isfinite(x) && std::isfinite(y)) finite.push_back(static_cast<std::uint32_t>(a));
   }
-  near.lists = find_neighbors_cell_list(near.x, near.y, cutoff);
+  if (finite.size() == c.size()) {
+    near.lists = find_neighbors_sparse_cells(near.x, near.y, cutoff);
+    return near;
+  }
+  std::vector<double> fx, fy;
+  for (const std::uint32_t a : finite) {
+    fx.push_back(near.x[a]);
+    fy.push_back(near.y[a]);
+  }
+  const NeighborLists found = find_neighbors_sparse_cells(fx, fy, cutoff);
+  near.lists.offsets.assign(c.size() + 1, 0);
+  std::size_t next = 0;  // the next finite candidate
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    if (next < finite.size() && finite[next] == a) {
+      for (std::uint32_t k = found.offsets[next]; k < found.offsets[next + 1]; ++k)
+        near.lists.indices.push_back(finite[found.indices[k]]);
+      ++next;
+    }
+    near.lists.offsets[a + 1] = static_cast<std::uint32_t>(near.lists.indices.size());
+  }
   return near;
 }
 

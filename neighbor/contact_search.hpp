@@ -1,5 +1,5 @@
 #pragma once
-// The contact search (MODEL.md section 7): pairs of contact candidates that
+// The contact search (MODEL.md section 8): pairs of contact candidates that
 // may touch (not bonded in the reference configuration, not in one group of
 // particles that never move relative to each other) within a cutoff, found
 // by the cell list on the current positions.

@@ -33,6 +33,10 @@ NeighborLists find_neighbors_cell_list(std::span<const double> x, std::span<cons
                                        double radius);
 NeighborLists find_neighbors_kdtree(std::span<const double> x, std::span<const double> y,
                                     double radius);
+// Cells sorted by index instead of a dense grid: memory in the points, not
+// in the area they span (the contact search, whose bodies may fly apart).
+NeighborLists find_neighbors_sparse_cells(std::span<const double> x, std::span<const double> y,
+                                          double radius);
 NeighborLists find_neighbors_brute_force(std::span<const double> x, std::span<const double> y,
                                          double radius);
 

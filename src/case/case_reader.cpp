@@ -344,15 +344,16 @@ void read_contact(TableReader& top, CaseSpec& c) {
   ContactSpec& k = c.contact;
   k.enabled = r.boolean_or("enabled", true);
   k.distance = r.number_or("distance", k.distance);
-  // Bonds reach 2.1 l0, so every pair closer than that at set-up is bonded:
-  // a contact distance up to 2 l0 never repels a pair at rest.
-  r.range_check("distance", k.distance, k.distance > 0 && k.distance <= 2.0,
-                "(0, 2] lattice spacings l0");
+  // At least l0 / 2, so no particle slips between two surface particles l0
+  // apart; at most 1.5 l0, so a body's own surface pairs (sqrt 5 l0 apart at
+  // rest) repel only beyond a third in compression (MODEL.md section 8).
+  r.range_check("distance", k.distance, k.distance >= 0.5 && k.distance <= 1.5,
+                "[0.5, 1.5] lattice spacings l0");
   k.skin = r.number_or("skin", k.skin);
   r.range_check("skin", k.skin, k.skin > 0 && k.skin <= 2.0, "(0, 2] lattice spacings l0");
   k.min_distance = r.number_or("min_distance", k.min_distance);
-  r.range_check("min_distance", k.min_distance, k.min_distance >= 0 && k.min_distance < 1,
-                "[0, 1) contact distances");
+  r.range_check("min_distance", k.min_distance, k.min_distance >= 0.5 && k.min_distance < 1,
+                "[0.5, 1) contact distances");
   k.bodies.clear();
   if (const TomlValue* names = r.find("bodies")) {
     if (!names->is_array() || names->as_array().empty())

@@ -69,17 +69,19 @@ struct StabilitySpec {
 };
 
 // Contact between particles that are not bonded in the reference
-// configuration (MODEL.md section 7): a frictionless repulsive pair force
+// configuration (MODEL.md section 8): a frictionless repulsive pair force
 // k (d - r) below the contact distance d, between the surface particles of
-// the bodies listed. Off unless the case has [contact] enabled = true.
+// the bodies listed. Off without a [contact] table (enabled defaults to true
+// in one).
 struct ContactSpec {
   bool enabled = false;
-  double distance = 1.0;    // d, in units of l0: below the nearest non-bonded distance at set-up
+  double distance = 1.0;    // d, in units of l0, [0.5, 1.5] (MODEL.md section 8)
   double skin = 0.5;        // Verlet skin, in units of l0
   double stiffness = 0;     // K_c in Pa (the pair spring is K_c * depth); set by the reader
   std::vector<int> bodies;  // indices into CaseSpec::bodies, ascending
   // The interpenetration check: a non-bonded pair closer than this fraction
-  // of the contact distance stops the run.
+  // of the contact distance, [0.5, 1) (the stable-step bound assumes no pair
+  // closer than d / 2), stops the run.
   double min_distance = 0.5;
 };
 

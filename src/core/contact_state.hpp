@@ -1,6 +1,6 @@
 #pragma once
 // Contact between particles that are not bonded in the reference
-// configuration (MODEL.md section 7): the candidates (surface particles of
+// configuration (MODEL.md section 8): the candidates (surface particles of
 // the contacting bodies, fixed at set-up), their Verlet list and the contact
 // forces of the current step. Plain data: the search that fills the list is
 // neighbor/contact_search, the force pass kernels/contact_force.
@@ -32,15 +32,15 @@ struct ContactParameters {
 // one, each rigid body its own) and are never paired; elastic ones have none.
 inline constexpr std::int32_t kNoContactGroup = -1;
 
-// The step at which some thread found the list stale: set in the force
-// pass, read by every thread after its barrier. A step number rather than a
-// flag, so that no thread has to clear it while another may still read it.
-// Copyable, so the solver state stays a value.
-struct StaleStep {
+// A step some thread marked in the contact pass (the list found stale, a
+// pair found too close), read after the pass's barrier or after the team.
+// A step number rather than a flag, so that no thread has to clear it while
+// another may still read it. Copyable, so the solver state stays a value.
+struct StepMark {
   std::atomic<std::int64_t> step{-1};
-  StaleStep() = default;
-  StaleStep(const StaleStep& o) : step(o.step.load()) {}
-  StaleStep& operator=(const StaleStep& o) {
+  StepMark() = default;
+  StepMark(const StepMark& o) : step(o.step.load()) {}
+  StepMark& operator=(const StepMark& o) {
     step.store(o.step.load());
     return *this;
   }
@@ -60,22 +60,27 @@ struct ContactState {
   // Candidate positions when the list was built.
   std::vector<double> built_x, built_y;
   std::int64_t rebuilds = 0;
-  StaleStep stale;
+  StepMark stale;
+  // The first step in which a pair came closer than min_distance (-1: none
+  // yet): the blow-up check, run every few hundred steps, reports it.
+  StepMark too_close;
   // The current step's contact force on each candidate (N over the depth).
   std::vector<double> force_x, force_y;
 
   bool enabled() const { return !candidates.empty(); }
   std::size_t size() const { return candidates.size(); }
-  // The candidates whose storage index lies in [block.begin, block.end).
   // True when candidate a has moved more than half the skin since the
   // build: a pair closer than d might then be missing from the list. (A
-  // little less than half, so rounding in the test never lets one through.)
+  // little less than half, so rounding in the test never lets one through.
+  // A position that is not finite has not "moved": no rebuild can help it,
+  // and the run's finite check stops the run.)
   bool moved_past_half_skin(const ParticleStore& p, std::size_t a) const {
     const double dx = p.x[candidates[a]] - built_x[a];
     const double dy = p.y[candidates[a]] - built_y[a];
     const double half = 0.4999 * parameters.skin;
-    return !(dx * dx + dy * dy <= half * half);
+    return dx * dx + dy * dy > half * half;
   }
+  // The candidates whose storage index lies in [block.begin, block.end).
   Range candidates_in(Range block) const {
     const auto first = std::lower_bound(candidates.begin(), candidates.end(), block.begin);
     const auto last = std::lower_bound(first, candidates.end(), block.end);

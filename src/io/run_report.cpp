@@ -120,9 +120,9 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
     report["contact"] = {{"candidates", c.size()},
                          {"list_entries", c.partner.size()},
                          {"rebuilds", c.rebuilds},
-                         {"distance", c.parameters.distance},
-                         {"stiffness", c.parameters.stiffness},
-                         {"skin", c.parameters.skin}};
+                         {"distance_m", c.parameters.distance},
+                         {"pair_stiffness_n_per_m", c.parameters.stiffness},
+                         {"skin_m", c.parameters.skin}};
   if (!in.spec.notes.empty()) report["notes"] = in.spec.notes;
   if (!facts.diagnosis_json.is_null()) report["diagnosis"] = facts.diagnosis_json;
   return report.dump(2) + "\n";

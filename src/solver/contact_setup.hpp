@@ -1,5 +1,5 @@
 #pragma once
-// Contact at set-up (MODEL.md section 7): which particles are candidates,
+// Contact at set-up (MODEL.md section 8): which particles are candidates,
 // their groups, the parameters in SI units, and the contact term of the
 // stable-step bound.
 #include <algorithm>
@@ -23,8 +23,10 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s);
 // apart than d / 2, which the interpenetration check keeps). 0 without contact.
 double contact_omega_squared(const CaseSpec& spec, const SolverState& s);
 
-// How far the closest-pair diagnostic looks: d + skin, and at least 3 l0 (so
-// the gap between bodies shows in history.csv before they touch).
+// How far the closest-pair diagnostic looks: d + skin, and at least 3 l0.
+// (Within a body, surface pairs sqrt 5 l0 apart at rest are not bonded: the
+// column reads 2.24 l0 at rest and shows a gap between bodies only once it
+// is smaller.)
 inline double contact_search_reach(const CaseSpec& spec) {
   return std::max(spec.contact.distance + spec.contact.skin, 3.0) * spec.l0;
 }

@@ -91,7 +91,15 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     return v;
   }
   if (state_.contact.enabled()) {
-    const StabilityVerdict touch = check_interpenetration(state_.contact, p);
+    StabilityVerdict touch = check_interpenetration(state_.contact, p);
+    if (!touch.ok && !touch.has_neighbor) {  // they parted again: name the closest pair now
+      const ClosestContact closest =
+          closest_contact(state_.contact, p, state_.bonds, contact_search_reach(spec_));
+      touch.particle = closest.i;
+      touch.neighbor = closest.j;
+      touch.has_neighbor = closest.found;
+      touch.value = closest.distance;
+    }
     if (!touch.ok) return touch;
   }
   const StabilityVerdict speed = check_speed(p, limit_speed_);

@@ -500,11 +500,12 @@ TEST(CaseErrors, LoadOnAWall) {
 
 TEST(CaseErrors, ContactKeysOutOfRange) {
   for (const auto& [set, key, allowed] :
-       {std::tuple{"contact.distance=0", "contact.distance", "(0, 2] lattice spacings"},
-        {"contact.distance=2.5", "contact.distance", "(0, 2] lattice spacings"},
+       {std::tuple{"contact.distance=0.4", "contact.distance", "[0.5, 1.5] lattice spacings"},
+        {"contact.distance=1.6", "contact.distance", "[0.5, 1.5] lattice spacings"},
         {"contact.skin=0", "contact.skin", "(0, 2] lattice spacings"},
         {"contact.stiffness=-1e6", "contact.stiffness", "(0, inf) Pa"},
-        {"contact.min_distance=1", "contact.min_distance", "[0, 1) contact distances"}})
+        {"contact.min_distance=1", "contact.min_distance", "[0.5, 1) contact distances"},
+        {"contact.min_distance=0.3", "contact.min_distance", "[0.5, 1) contact distances"}})
     EXPECT_INPUT_ERROR(base_toml(), {"contact.", key, allowed}, {set});
   EXPECT_INPUT_ERROR(base_toml(), {"contact.friction", "unknown key", "distance"},
                      {"contact.friction=0.3"});

@@ -71,8 +71,10 @@ void expect_all_searches_agree(const std::vector<double>& x, const std::vector<d
   const NeighborLists brute = find_neighbors_brute_force(x, y, radius);
   const NeighborLists cells = find_neighbors_cell_list(x, y, radius);
   const NeighborLists tree = find_neighbors_kdtree(x, y, radius);
+  const NeighborLists sparse = find_neighbors_sparse_cells(x, y, radius);
   EXPECT_GE(brute.pair_count(), min_pairs);
   EXPECT_TRUE(cells == brute) << "cell list differs from brute force";
+  EXPECT_TRUE(sparse == brute) << "sparse cells differ from brute force";
   EXPECT_TRUE(tree == brute) << "k-d tree differs from brute force";
 }
 
@@ -88,6 +90,23 @@ TEST(NeighborSearch, AgreeOnLattices) {
     // A radius exactly on a shell (2 l0): borderline pairs decided by one predicate.
     expect_all_searches_agree(x, y, 2.0 * l0, 8 * x.size() / 2);
   }
+}
+
+// Two clusters a kilometre apart at a millimetre radius: a dense grid would
+// need 1e12 cells; the sparse search needs memory for the points only.
+TEST(NeighborSearch, SparseCellsHandleAHugeSpread) {
+  std::vector<double> x, y;
+  for (int k = 0; k < 20; ++k) {
+    x.push_back(k * 0.5e-3);
+    y.push_back(0.0);
+    x.push_back(1000.0 + k * 0.5e-3);
+    y.push_back(-1000.0);
+  }
+  const NeighborLists sparse = find_neighbors_sparse_cells(x, y, 1.1e-3);
+  EXPECT_TRUE(sparse == find_neighbors_brute_force(x, y, 1.1e-3));
+  EXPECT_EQ(sparse.pair_count(), 2u * (2 * 19 + 2 * 18));
+  const std::vector<double> bad = {0.0, std::nan("")}, zeros = {0.0, 0.0};
+  EXPECT_THROW(find_neighbors_sparse_cells(bad, zeros, 1.0), std::invalid_argument);
 }
 
 TEST(NeighborSearch, AgreeOnRandomClouds) {
