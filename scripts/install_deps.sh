@@ -8,6 +8,7 @@ packages=(
   libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev clang-format
   python3 python3-h5py python3-matplotlib
   python3-dev python3-numpy python3-setuptools python3-wheel python3-venv python3-pip pybind11-dev python3-pybind11
+  libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -4,13 +4,20 @@
 
 #include "build_info.hpp"
 #include "src/core/parallel.hpp"
+#include "src/distributed/communicator.hpp"
 
 namespace mpsolid {
 
 VersionFacts version_facts() {
-  VersionFacts f{build_info::version,    build_info::git_commit, build_info::compiler,
-                 build_info::build_type, build_info::cxx_flags,  "",
+  VersionFacts f{build_info::version,
+                 build_info::git_commit,
+                 build_info::compiler,
+                 build_info::build_type,
+                 build_info::cxx_flags,
+                 "",
+                 "",
                  available_cores()};
+  f.mpi = mpi_library_version();
 #ifdef _OPENMP
   f.openmp = fmt::format("OpenMP {} ({} cores)", _OPENMP, f.cores);
 #else
@@ -21,8 +28,12 @@ VersionFacts version_facts() {
 
 std::string version_text() {
   const VersionFacts f = version_facts();
-  return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; MPI: not in this build",
-                     f.version, f.git_commit, f.compiler, f.build_type, f.cxx_flags, f.openmp);
+  // The decomposed step is not in the solver yet: a build with MPI runs one
+  // rank like one without (docs/mpi.md).
+  const std::string mpi = f.mpi == "none" ? std::string("MPI: not in this build")
+                                          : "MPI: " + f.mpi + " (the step runs on one rank)";
+  return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; {}", f.version,
+                     f.git_commit, f.compiler, f.build_type, f.cxx_flags, f.openmp, mpi);
 }
 
 }  // namespace mpsolid

@@ -7,6 +7,7 @@ namespace mpsolid {
 struct VersionFacts {
   std::string version, git_commit, compiler, build_type, cxx_flags;
   std::string openmp;  // "OpenMP 201511 (2 cores)" or "no OpenMP"
+  std::string mpi;     // "Open MPI v4.1.4" or "none" (docs/mpi.md)
   int cores = 1;
 };
 

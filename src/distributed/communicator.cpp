@@ -1,0 +1,122 @@
+#include "src/distributed/communicator.hpp"
+
+#include <stdexcept>
+
+#ifdef MPSOLID_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace mpsolid {
+
+#ifdef MPSOLID_HAVE_MPI
+
+namespace {
+Communicator*& world_slot() {
+  static Communicator* world = nullptr;
+  return world;
+}
+}  // namespace
+
+const Communicator& Communicator::world() {
+  static const Communicator one_rank(0, 1);
+  return world_slot() ? *world_slot() : one_rank;
+}
+
+std::vector<double> Communicator::all_gather(const std::vector<double>& mine) const {
+  if (size_ == 1) return mine;
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), starts(counts.size() + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (std::size_t r = 0; r < counts.size(); ++r) starts[r + 1] = starts[r] + counts[r];
+  std::vector<double> all(static_cast<std::size_t>(starts.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+                 MPI_DOUBLE, MPI_COMM_WORLD);
+  return all;
+}
+
+std::vector<std::vector<double>> Communicator::exchange(
+    const std::vector<int>& peers, const std::vector<std::vector<double>>& out) const {
+  if (peers.size() != out.size()) throw std::invalid_argument("exchange: one message per peer");
+  const std::size_t n = peers.size();
+  std::vector<int> in_counts(n), out_counts(n);
+  std::vector<MPI_Request> requests(2 * n);
+  constexpr int kCountTag = 1, kDataTag = 2;
+  for (std::size_t k = 0; k < n; ++k) {
+    out_counts[k] = static_cast<int>(out[k].size());
+    MPI_Irecv(&in_counts[k], 1, MPI_INT, peers[k], kCountTag, MPI_COMM_WORLD, &requests[k]);
+    MPI_Isend(&out_counts[k], 1, MPI_INT, peers[k], kCountTag, MPI_COMM_WORLD, &requests[n + k]);
+  }
+  MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
+  std::vector<std::vector<double>> in(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    in[k].resize(static_cast<std::size_t>(in_counts[k]));
+    MPI_Irecv(in[k].data(), in_counts[k], MPI_DOUBLE, peers[k], kDataTag, MPI_COMM_WORLD,
+              &requests[k]);
+    MPI_Isend(out[k].data(), out_counts[k], MPI_DOUBLE, peers[k], kDataTag, MPI_COMM_WORLD,
+              &requests[n + k]);
+  }
+  MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
+  return in;
+}
+
+void Communicator::barrier() const {
+  if (size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
+}
+
+MpiSession::MpiSession(int* argc, char*** argv) {
+  int provided = 0;
+  // Only the thread that started MPI calls it (OpenMP teams never do).
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  world_slot() = new Communicator(rank, size);
+}
+
+MpiSession::~MpiSession() {
+  delete world_slot();
+  world_slot() = nullptr;
+  MPI_Finalize();
+}
+
+std::string mpi_library_version() {
+  char text[MPI_MAX_LIBRARY_VERSION_STRING];
+  int length = 0;
+  MPI_Get_library_version(text, &length);
+  std::string version(text, static_cast<std::size_t>(length));
+  // The first line, without the build details after the comma.
+  version = version.substr(0, version.find_first_of(",\n"));
+  return version;
+}
+
+#else  // one rank
+
+const Communicator& Communicator::world() {
+  static const Communicator one_rank(0, 1);
+  return one_rank;
+}
+
+std::vector<double> Communicator::all_gather(const std::vector<double>& mine) const {
+  return mine;
+}
+
+std::vector<std::vector<double>> Communicator::exchange(
+    const std::vector<int>& peers, const std::vector<std::vector<double>>& out) const {
+  if (peers.size() != out.size()) throw std::invalid_argument("exchange: one message per peer");
+  for (const int peer : peers)
+    if (peer != 0) throw std::invalid_argument("exchange: a one-rank run has no other rank");
+  return out;  // a rank exchanging with itself gets its own message back
+}
+
+void Communicator::barrier() const {}
+
+MpiSession::MpiSession(int*, char***) {}
+MpiSession::~MpiSession() = default;
+
+std::string mpi_library_version() {
+  return "none";
+}
+
+#endif
+
+}  // namespace mpsolid

@@ -1,0 +1,48 @@
+#pragma once
+// The ranks of a run (docs/mpi.md): MPI's world communicator when the build
+// has MPI (MPSOLID_HAVE_MPI) and the program started it, one rank otherwise.
+// Only what the decomposition needs: rank and size, an all-gather in rank
+// order, and pairwise exchanges with neighbouring ranks. Every call is
+// collective over the ranks involved and returns the same data at any
+// timing, so results never depend on message order.
+#include <string>
+#include <vector>
+
+namespace mpsolid {
+
+class Communicator {
+ public:
+  // The world: every rank of the run (one, without MPI or before MpiSession).
+  static const Communicator& world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+  // Every rank's values, concatenated in rank order, on every rank.
+  std::vector<double> all_gather(const std::vector<double>& mine) const;
+  // Sends out[k] to rank peers[k] and returns what peers[k] sent to this
+  // rank, in the same order. Every peer must list this rank in its own call.
+  std::vector<std::vector<double>> exchange(const std::vector<int>& peers,
+                                            const std::vector<std::vector<double>>& out) const;
+  void barrier() const;
+
+ private:
+  Communicator(int rank, int size) : rank_(rank), size_(size) {}
+  int rank_ = 0, size_ = 1;
+  friend class MpiSession;
+};
+
+// Starts MPI for the program's lifetime when the build has it (a no-op
+// otherwise); the world communicator reflects it from then on.
+class MpiSession {
+ public:
+  MpiSession(int* argc, char*** argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+// "Open MPI 4.1.4" (the library's own words), or "none" in a build without MPI.
+std::string mpi_library_version();
+
+}  // namespace mpsolid

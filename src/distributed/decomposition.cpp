@@ -1,0 +1,72 @@
+#include "src/distributed/decomposition.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "src/core/ordered_sum.hpp"
+
+namespace mpsolid {
+
+int Decomposition::owner_of(std::size_t i) const {
+  // The last rank whose range starts at or before i (empty ranges share a start).
+  const auto after = std::upper_bound(starts.begin(), starts.end() - 1, i);
+  return static_cast<int>(after - starts.begin()) - 1;
+}
+
+Decomposition decompose(const BondTable& bonds, int ranks) {
+  if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
+  const std::size_t n = bonds.particle_count();
+  const std::size_t chunks = (n + kSumChunk - 1) / kSumChunk;
+  // Work before each chunk boundary: bond entries plus particles.
+  std::vector<double> work(chunks + 1, 0.0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t end = std::min(n, (c + 1) * kSumChunk);
+    work[c + 1] = static_cast<double>(bonds.offsets[end] + end);
+  }
+  Decomposition d;
+  d.starts.assign(static_cast<std::size_t>(ranks) + 1, n);
+  d.starts[0] = 0;
+  std::size_t c = 0;
+  for (int r = 1; r < ranks; ++r) {
+    // The boundary nearest r / ranks of the work, never before the last one.
+    const double target = work[chunks] * r / ranks;
+    while (c < chunks && work[c + 1] <= target) ++c;
+    if (c < chunks && target - work[c] > work[c + 1] - target) ++c;
+    d.starts[static_cast<std::size_t>(r)] =
+        std::max(d.starts[static_cast<std::size_t>(r) - 1], std::min(n, c * kSumChunk));
+  }
+  return d;
+}
+
+HaloPlan plan_halo(const BondTable& bonds, const Decomposition& d, int rank) {
+  HaloPlan plan;
+  const Range mine = d.owned(rank);
+  std::map<int, std::vector<std::uint32_t>> receive, send;
+  std::vector<std::uint32_t> ghosts;
+  for (std::size_t i = mine.begin; i < mine.end; ++i)
+    for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+      const std::uint32_t j = bonds.neighbor[k];
+      if (j >= mine.begin && j < mine.end) continue;
+      ghosts.push_back(j);
+      // The bond table is symmetric: j's owner needs i as a ghost too.
+      send[d.owner_of(j)].push_back(static_cast<std::uint32_t>(i));
+    }
+  const auto unique_sorted = [](std::vector<std::uint32_t>& v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  };
+  unique_sorted(ghosts);
+  for (const std::uint32_t g : ghosts) receive[d.owner_of(g)].push_back(g);
+  plan.ghosts = std::move(ghosts);
+  for (auto& [peer, list] : receive) {
+    plan.peers.push_back(peer);
+    plan.receive.push_back(std::move(list));
+    std::vector<std::uint32_t>& out = send[peer];
+    unique_sorted(out);
+    plan.send.push_back(std::move(out));
+  }
+  return plan;
+}
+
+}  // namespace mpsolid

@@ -1,0 +1,49 @@
+#pragma once
+// Which rank owns which particles, and the halo each rank needs (docs/mpi.md).
+//
+// A rank owns a contiguous range of storage indices whose ends are
+// multiples of the ordered sums' chunk (kSumChunk): each rank's chunk sums
+// are then the serial run's, and added in chunk order they give the serial
+// bits at any rank count. The ranges are balanced by work (bond entries
+// plus particles). Storage is row by row within each body, so a range is a
+// slab of rows.
+//
+// A rank's ghosts are the particles its owned particles are bonded to and
+// it does not own: the gathers of an owned particle read only its own
+// bonds' partners, so one layer of ghosts, refreshed before each pass that
+// reads neighbours, gives every owned particle the serial inputs.
+#include <cstdint>
+#include <vector>
+
+#include "src/core/bonds.hpp"
+#include "src/core/types.hpp"
+
+namespace mpsolid {
+
+struct Decomposition {
+  std::vector<std::size_t> starts;  // rank r owns [starts[r], starts[r + 1])
+
+  int ranks() const { return static_cast<int>(starts.size()) - 1; }
+  Range owned(int rank) const {
+    return {starts[static_cast<std::size_t>(rank)], starts[static_cast<std::size_t>(rank) + 1]};
+  }
+  int owner_of(std::size_t i) const;
+};
+
+// Contiguous chunk-aligned ranges over the bond table's particles for
+// `ranks` ranks, balanced by bond entries + particles. A rank may own
+// nothing when there are fewer chunks than ranks.
+Decomposition decompose(const BondTable& bonds, int ranks);
+
+// One rank's halo: its ghosts, and per neighbouring rank what it sends
+// (its own particles that rank needs) and receives (that rank's particles
+// it needs). All storage indices, ascending; neighbours ascending.
+struct HaloPlan {
+  std::vector<std::uint32_t> ghosts;
+  std::vector<int> peers;
+  std::vector<std::vector<std::uint32_t>> send, receive;  // per peer
+};
+
+HaloPlan plan_halo(const BondTable& bonds, const Decomposition& d, int rank);
+
+}  // namespace mpsolid
