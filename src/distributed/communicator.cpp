@@ -3,6 +3,9 @@
 #include <stdexcept>
 
 #ifdef MPSOLID_HAVE_MPI
+// The C interface only: MPI's deprecated C++ bindings are not needed.
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #endif
 
