@@ -373,12 +373,7 @@ def draw_panel(ax, panel, x_range, y_range, points_per_mm, legend):
     """The particles of one frame, walls and rigid bodies first, elastic on top."""
     from matplotlib.ticker import MaxNLocator
     frame, frames = panel["frame"], panel["frames"]
-    ax.set_xlim(*y_range)
-    ax.set_ylim(x_range[1], x_range[0])
-    ax.set_aspect("equal")
-    ax.grid(True, linewidth=0.3, alpha=0.5)
-    ax.set_axisbelow(True)
-    ax.tick_params(labelsize=7, length=2.5)
+    plot.frame_axes(ax, y_range, x_range, labelsize=7, ticklength=2.5)
     ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
     title = f"{panel['label']}, t = {plot.ms(panel['time'])}"
     if frame is not None and abs(frame.time - panel["time"]) > 1e-6:

@@ -62,6 +62,17 @@ COLOUR_CLIP_WHEN = 1.25  # clip when the largest |value| exceeds the percentile 
 np = h5py = plt = None   # loaded by load_libraries()
 
 
+def frame_axes(ax, across, down, labelsize, ticklength):
+    """A frame panel's axes: across (mm) to the right, down (mm) down the
+    page, equal aspect, a light grid behind the particles."""
+    ax.set_xlim(*across)
+    ax.set_ylim(down[1], down[0])
+    ax.set_aspect("equal")
+    ax.grid(True, linewidth=0.3, alpha=0.5)
+    ax.set_axisbelow(True)
+    ax.tick_params(labelsize=labelsize, length=ticklength)
+
+
 def fail(message, code=2):
     print(f"plot.py: {message}", file=sys.stderr)
     sys.exit(code)
@@ -521,12 +532,7 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
                                       linewidths=0)
             else:
                 ax.scatter(across_mm[sel], down_mm[sel], s=size, color=colour, linewidths=0)
-        ax.set_xlim(*across)
-        ax.set_ylim(down[1], down[0])
-        ax.set_aspect("equal")
-        ax.grid(True, linewidth=0.3, alpha=0.5)
-        ax.set_axisbelow(True)
-        ax.tick_params(labelsize=8, length=3)
+        frame_axes(ax, across, down, labelsize=8, ticklength=3)
         label = f"t = {ms(fr['time'])}"
         ax.set_title(label, fontsize=10, pad=4)
         below_empty = k + columns >= n   # nothing under this panel

@@ -32,16 +32,8 @@ CONTACT_CASE = os.path.join(ROOT, "cases", "shock_rod_55kN.toml")
 NO_CONTACT_CASE = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 SETTINGS = ["l0=0.004", "time.end=0.002", "output.frame_interval=0.001",
             "bodies.wall.x=[0.100,0.108]"]
-failures = []
-
-
-def check(condition, what, detail=""):
-    if condition:
-        print(f"ok: {what}")
-    else:
-        print(f"FAIL: {what}{': ' + detail if detail else ''}")
-        failures.append(what)
-    return condition
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, failures  # noqa: E402
 
 
 def start_run(binary, case, out):

@@ -45,16 +45,8 @@ CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
 CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure"}
-failures = []
-
-
-def check(condition, what, detail=""):
-    if condition:
-        print(f"ok: {what}")
-    else:
-        print(f"FAIL: {what}{': ' + detail if detail else ''}")
-        failures.append(what)
-    return condition
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, failures  # noqa: E402
 
 
 def run_mpsolid(binary, out, *sets, case=CASE, short=True, expect=0):
