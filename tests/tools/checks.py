@@ -1,5 +1,5 @@
 """The scripts' shared check recorder: check() prints ok/FAIL and remembers
-the failures; finish() prints the verdict and gives the exit code."""
+the failures; verdict() prints the verdict and gives the exit code."""
 
 failures = []
 
@@ -11,3 +11,13 @@ def check(condition, what, detail=""):
         print(f"FAIL: {what}{': ' + detail if detail else ''}")
         failures.append(what)
     return condition
+
+
+def verdict(script):
+    """Prints the script's verdict; its exit code: 1 if any check failed."""
+    print()
+    if failures:
+        print(f"{script}: {len(failures)} check(s) FAILED")
+        return 1
+    print(f"{script}: all checks passed")
+    return 0

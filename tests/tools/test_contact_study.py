@@ -33,7 +33,7 @@ NO_CONTACT_CASE = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 SETTINGS = ["l0=0.004", "time.end=0.002", "output.frame_interval=0.001",
             "bodies.wall.x=[0.100,0.108]"]
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, failures  # noqa: E402
+from checks import check, verdict  # noqa: E402
 
 
 def start_run(binary, case, out):
@@ -159,12 +159,7 @@ def main():
             check_errors(tmp, folders["contact"])
     finally:
         shutil.rmtree(tmp)
-    print()
-    if failures:
-        print(f"test_contact_study: {len(failures)} check(s) FAILED")
-        return 1
-    print("test_contact_study: all checks passed")
-    return 0
+    return verdict("test_contact_study")
 
 
 if __name__ == "__main__":

@@ -46,7 +46,7 @@ CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure"}
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, failures  # noqa: E402
+from checks import check, verdict  # noqa: E402
 
 
 def run_mpsolid(binary, out, *sets, case=CASE, short=True, expect=0):
@@ -394,12 +394,7 @@ def main():
             check_blowup(blowup)
     finally:
         shutil.rmtree(tmp)
-    print()
-    if failures:
-        print(f"test_tools: {len(failures)} check(s) FAILED")
-        return 1
-    print("test_tools: all checks passed")
-    return 0
+    return verdict("test_tools")
 
 
 if __name__ == "__main__":
