@@ -1,5 +1,6 @@
 #include "src/distributed/communicator.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 
 #ifdef MPSOLID_HAVE_MPI
@@ -10,6 +11,12 @@
 #endif
 
 namespace mpsolid {
+
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
 
 #ifdef MPSOLID_HAVE_MPI
 

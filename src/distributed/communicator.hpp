@@ -42,6 +42,10 @@ class MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
 };
 
+// True when an MPI launcher started this process (mpirun, mpiexec, srun
+// with PMI or PMIx): its environment names the job's size or this rank.
+bool launched_by_mpi();
+
 // "Open MPI 4.1.4" (the library's own words), or "none" in a build without MPI.
 std::string mpi_library_version();
 
