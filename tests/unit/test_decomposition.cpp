@@ -8,9 +8,15 @@
 #include <algorithm>
 #include <set>
 
+#include <cstring>
+
+#include "kernels/model_registry.hpp"
+#include "src/core/half_angles.hpp"
 #include "src/core/ordered_sum.hpp"
 #include "src/distributed/decomposition.hpp"
+#include "src/distributed/local_state.hpp"
 #include "src/solver/setup.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
@@ -90,6 +96,96 @@ TEST(Decomposition, HaloHoldsExactlyThePartnersARankDoesNotOwn) {
         EXPECT_EQ(other.send[static_cast<std::size_t>(at - other.peers.begin())], plan.receive[k]);
       }
       EXPECT_EQ(received, plan.ghosts.size());
+    }
+  }
+}
+
+// A rank's local copy keeps every owned particle's bond row (same partners,
+// same order, same reference vectors) and gives each ghost its bonds to
+// owned particles.
+TEST(Decomposition, LocalStateKeepsTheOwnedRowsAndTheGhostsBondsToThem) {
+  PhaseTimers timers;
+  const SolverState global = set_up(testing::rod_case({"l0=0.001"}), timers);
+  const BondTable& bonds = global.bonds;
+  for (int ranks : {2, 3, 5}) {
+    const Decomposition d = decompose(bonds, ranks);
+    for (int r = 0; r < ranks; ++r) {
+      SCOPED_TRACE(::testing::Message() << r << " of " << ranks);
+      const LocalLayout layout = local_layout(d, plan_halo(bonds, d, r), r);
+      ASSERT_TRUE(std::is_sorted(layout.global_of.begin(), layout.global_of.end()));
+      ASSERT_EQ(layout.owned.size(), d.owned(r).size());
+      if (!layout.owned.empty()) EXPECT_EQ(layout.global_of[layout.owned.begin], d.owned(r).begin);
+      const ParticleStore local = local_particles(global.particles, layout);
+      const BondTable lb = local_bonds(bonds, local, layout);
+      for (std::size_t k = 0; k < layout.size(); ++k) {
+        const std::size_t g = layout.global_of[k];
+        EXPECT_EQ(local.kind[k], global.particles.kind[g]);
+        std::vector<std::uint32_t> expected;
+        std::vector<double> r0x;
+        const bool owned = k >= layout.owned.begin && k < layout.owned.end;
+        for (std::uint32_t b = bonds.begin(g); b < bonds.end(g); ++b)
+          if (owned || d.owner_of(bonds.neighbor[b]) == r) {
+            expected.push_back(bonds.neighbor[b]);
+            r0x.push_back(bonds.r0x[b]);
+          }
+        std::vector<std::uint32_t> got;
+        for (std::uint32_t b = lb.begin(k); b < lb.end(k); ++b) {
+          got.push_back(layout.global_of[lb.neighbor[b]]);
+          EXPECT_EQ(std::memcmp(&lb.r0x[b], &r0x[b - lb.begin(k)], sizeof(double)), 0);
+        }
+        EXPECT_EQ(got, expected) << "row of global particle " << g;
+      }
+    }
+  }
+}
+
+// The decomposed step's kernels, one rank at a time: with the ghosts'
+// positions and half angles (the first halo), the paper models' strain pass
+// gives the owned particles the serial pressure bit for bit; with the
+// ghosts' pressure (the second halo), the force pass the serial forces.
+TEST(Decomposition, PaperModelPassesOnALocalStateGiveTheSerialBits) {
+  for (const std::string model : {"paper", "paper_conservative"}) {
+    SCOPED_TRACE(model);
+    Simulation sim(testing::rod_case({"l0=0.001", "model=" + model}));
+    sim.advance(400);  // moving, rotated, loaded
+    sim.refresh_fields();
+    const SolverState& global = sim.state();
+    ParticleStore serial = global.particles;
+    AnyModel serial_model = make_model(model, serial, global.bonds, sim.spec().model_options);
+    std::visit(
+        [&](auto& m) {
+          m.compute_strain(serial, global.bonds, serial.all());
+          m.compute_forces(serial, global.bonds, serial.moving());
+        },
+        serial_model);
+    for (int ranks : {2, 3}) {
+      const Decomposition d = decompose(global.bonds, ranks);
+      for (int r = 0; r < ranks; ++r) {
+        SCOPED_TRACE(::testing::Message() << r << " of " << ranks);
+        const LocalLayout layout = local_layout(d, plan_halo(global.bonds, d, r), r);
+        ParticleStore local = local_particles(global.particles, layout);
+        const BondTable lb = local_bonds(global.bonds, local, layout);
+        AnyModel local_model = make_model(model, local, lb, sim.spec().model_options);
+        std::visit([&](auto& m) { m.compute_strain(local, lb, layout.owned); }, local_model);
+        for (std::size_t k = layout.owned.begin; k < layout.owned.end; ++k)
+          ASSERT_EQ(std::memcmp(&local.pressure[k], &serial.pressure[layout.global_of[k]],
+                                sizeof(double)),
+                    0)
+              << "pressure of global particle " << layout.global_of[k];
+        // The second halo: the ghosts' pressure from their owners.
+        for (std::size_t k = 0; k < layout.size(); ++k)
+          if (k < layout.owned.begin || k >= layout.owned.end)
+            local.pressure[k] = serial.pressure[layout.global_of[k]];
+        const Range moving_owned{std::max(layout.owned.begin, local.moving().begin),
+                                 std::min(layout.owned.end, local.moving().end)};
+        std::visit([&](auto& m) { m.compute_forces(local, lb, moving_owned); }, local_model);
+        for (std::size_t k = moving_owned.begin; k < moving_owned.end; ++k) {
+          const std::size_t g = layout.global_of[k];
+          ASSERT_EQ(std::memcmp(&local.fx[k], &serial.fx[g], sizeof(double)), 0) << g;
+          ASSERT_EQ(std::memcmp(&local.fy[k], &serial.fy[g], sizeof(double)), 0) << g;
+          ASSERT_EQ(std::memcmp(&local.torque[k], &serial.torque[g], sizeof(double)), 0) << g;
+        }
+      }
     }
   }
 }

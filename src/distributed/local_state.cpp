@@ -1,0 +1,80 @@
+#include "src/distributed/local_state.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace mpsolid {
+
+std::size_t LocalLayout::local_of(std::uint32_t global) const {
+  const auto at = std::lower_bound(global_of.begin(), global_of.end(), global);
+  if (at == global_of.end() || *at != global)
+    throw std::out_of_range("local_of: a particle this rank does not hold");
+  return static_cast<std::size_t>(at - global_of.begin());
+}
+
+LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank) {
+  LocalLayout layout;
+  const Range mine = d.owned(rank);
+  layout.owned_global = mine;
+  const auto below = std::lower_bound(halo.ghosts.begin(), halo.ghosts.end(), mine.begin);
+  layout.global_of.assign(halo.ghosts.begin(), below);
+  layout.owned.begin = layout.global_of.size();
+  for (std::size_t i = mine.begin; i < mine.end; ++i)
+    layout.global_of.push_back(static_cast<std::uint32_t>(i));
+  layout.owned.end = layout.global_of.size();
+  layout.global_of.insert(layout.global_of.end(), below, halo.ghosts.end());
+  return layout;
+}
+
+ParticleStore local_particles(const ParticleStore& global, const LocalLayout& layout) {
+  ParticleStore p;
+  p.resize(layout.size());
+  for (std::size_t k = 0; k < layout.size(); ++k) {
+    const std::size_t g = layout.global_of[k];
+    for (auto member :
+         {&ParticleStore::x, &ParticleStore::y, &ParticleStore::vx, &ParticleStore::vy,
+          &ParticleStore::theta, &ParticleStore::omega, &ParticleStore::x0, &ParticleStore::y0,
+          &ParticleStore::half_cos, &ParticleStore::half_sin, &ParticleStore::strain,
+          &ParticleStore::pressure, &ParticleStore::fx, &ParticleStore::fy, &ParticleStore::torque,
+          &ParticleStore::inv_mass, &ParticleStore::inv_inertia, &ParticleStore::lambda,
+          &ParticleStore::mu})
+      (p.*member)[k] = (global.*member)[g];
+    p.id[k] = global.id[g];
+    p.body[k] = global.body[g];
+    p.material[k] = global.material[g];
+    p.kind[k] = global.kind[g];
+  }
+  // Kinds are grouped [wall | elastic | rigid] globally, hence locally too.
+  const auto first_not = [&](std::size_t from, Kind kind) {
+    while (from < p.size() && p.kind[from] == kind) ++from;
+    return from;
+  };
+  const std::size_t walls_end = first_not(0, Kind::wall);
+  const std::size_t elastic_end = first_not(walls_end, Kind::elastic);
+  p.walls = {0, walls_end};
+  p.elastic = {walls_end, elastic_end};
+  p.rigid = {elastic_end, first_not(elastic_end, Kind::rigid)};
+  if (p.rigid.end != p.size())
+    throw std::logic_error("local_particles: kinds are not grouped in storage");
+  return p;
+}
+
+BondTable local_bonds(const BondTable& global, const ParticleStore& local,
+                      const LocalLayout& layout) {
+  std::vector<std::uint32_t> offsets(layout.size() + 1, 0), neighbor;
+  const auto is_owned = [&](std::uint32_t g) {
+    return g >= layout.owned_global.begin && g < layout.owned_global.end;
+  };
+  for (std::size_t k = 0; k < layout.size(); ++k) {
+    const std::size_t g = layout.global_of[k];
+    const bool whole = k >= layout.owned.begin && k < layout.owned.end;
+    for (std::uint32_t b = global.begin(g); b < global.end(g); ++b) {
+      const std::uint32_t j = global.neighbor[b];
+      if (whole || is_owned(j)) neighbor.push_back(static_cast<std::uint32_t>(layout.local_of(j)));
+    }
+    offsets[k + 1] = static_cast<std::uint32_t>(neighbor.size());
+  }
+  return make_bond_table(local, std::move(offsets), std::move(neighbor), global.geometry);
+}
+
+}  // namespace mpsolid
