@@ -77,4 +77,56 @@ BondTable local_bonds(const BondTable& global, const ParticleStore& local,
   return make_bond_table(local, std::move(offsets), std::move(neighbor), global.geometry);
 }
 
+namespace {
+// Where a global range lies for this rank: wholly owned (its local range),
+// not held at all, or split (refused).
+enum class Ownership { owned, elsewhere, split };
+Ownership ownership(Range global, const LocalLayout& layout) {
+  const Range mine = layout.owned_global;
+  if (global.begin >= mine.begin && global.end <= mine.end) return Ownership::owned;
+  if (global.end <= mine.begin || global.begin >= mine.end) return Ownership::elsewhere;
+  return Ownership::split;
+}
+Range to_local(Range global, const LocalLayout& layout) {
+  const std::size_t shift = layout.owned_global.begin - layout.owned.begin;
+  return {global.begin - shift, global.end - shift};
+}
+}  // namespace
+
+SolverState local_solver_state(const SolverState& global, const LocalLayout& layout) {
+  if (global.contact.enabled())
+    throw std::invalid_argument("contact is not decomposed over ranks yet (docs/mpi.md)");
+  SolverState s;
+  s.particles = local_particles(global.particles, layout);
+  s.bonds = local_bonds(global.bonds, s.particles, layout);
+  s.step = global.step;
+  s.peak_work = global.peak_work;
+  for (const RigidBody& body : global.rigid_bodies) {
+    const Ownership o = ownership(body.range, layout);
+    if (o == Ownership::split)
+      throw std::invalid_argument("rigid body '" + body.name +
+                                  "' is split between ranks: not supported yet (docs/mpi.md)");
+    if (o == Ownership::elsewhere) continue;
+    RigidBody local = body;
+    local.range = to_local(body.range, layout);
+    s.rigid_bodies.push_back(std::move(local));
+  }
+  for (const StepLoad& load : global.loads) {
+    const Ownership o = ownership(load.range, layout);
+    if (o == Ownership::split)
+      throw std::invalid_argument("the body of load '" + load.name +
+                                  "' is split between ranks: not supported yet (docs/mpi.md)");
+    if (o == Ownership::elsewhere) continue;
+    StepLoad local = load;
+    local.range = to_local(load.range, layout);
+    s.loads.push_back(std::move(local));
+  }
+  for (const HeldRange& hold : global.holds) {
+    const Range mine = layout.owned_global;
+    const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};
+    if (part.begin < part.end) s.holds.push_back({to_local(part, layout), hold.x, hold.y});
+  }
+  return s;
+}
+
 }  // namespace mpsolid

@@ -12,6 +12,7 @@
 
 #include "src/core/bonds.hpp"
 #include "src/core/particle_store.hpp"
+#include "src/core/solver_state.hpp"
 #include "src/distributed/decomposition.hpp"
 
 namespace mpsolid {
@@ -38,5 +39,12 @@ ParticleStore local_particles(const ParticleStore& global, const LocalLayout& la
 // the local particles' x0, y0 (the same bits as the global table's).
 BondTable local_bonds(const BondTable& global, const ParticleStore& local,
                       const LocalLayout& layout);
+
+// The whole local solver state: particles, bonds, and the rigid bodies,
+// loads and holds of the owned particles in local indices. A rigid body or
+// a loaded body must be owned by one rank (its projection and its load's
+// share sum over all of it); one split between ranks is refused
+// (std::invalid_argument). Contact is not decomposed yet (refused too).
+SolverState local_solver_state(const SolverState& global, const LocalLayout& layout);
 
 }  // namespace mpsolid

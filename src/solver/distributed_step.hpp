@@ -1,0 +1,67 @@
+#pragma once
+// The decomposed step on one rank (docs/mpi.md), for the paper models: the
+// rank steps its own particles on its local state, and before each pass
+// that reads neighbours its ghosts get their owners' values (the halos).
+// Every owned particle then computes exactly what the serial step computes,
+// in the same order: the same bits at any rank count.
+//
+// Halos per step: positions, rotations and half angles before the strain
+// pass; strain and pressure before the force pass. The paper models' force
+// pass reads nothing else of a neighbour (the corrected-gradient models'
+// stress terms are not exchanged yet: refused).
+#include <cstdint>
+#include <initializer_list>
+#include <type_traits>
+#include <vector>
+
+#include "kernels/paper_model.hpp"
+#include "src/distributed/communicator.hpp"
+#include "src/distributed/local_state.hpp"
+#include "src/solver/step.hpp"
+
+namespace mpsolid {
+
+// The halo in local indices: per peer, what this rank sends and where what
+// it receives goes.
+struct LocalHalo {
+  std::vector<int> peers;
+  std::vector<std::vector<std::uint32_t>> send, receive;
+};
+LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
+
+// Gives the ghosts their owners' values of the given arrays.
+void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleStore& p,
+                   std::initializer_list<std::vector<double> ParticleStore::*> arrays);
+
+template <class Model>
+inline constexpr bool kDecomposable =
+    std::is_same_v<Model, PaperModel> || std::is_same_v<Model, PaperConservativeModel>;
+
+// Advances this rank's local state by `steps` steps of dt (its team is the
+// calling thread's: one OpenMP thread per rank for now).
+template <class Model>
+void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
+                        const LocalHalo& halo, const Communicator& world, double dt,
+                        std::int64_t steps) {
+  static_assert(kDecomposable<Model>, "only the paper models are decomposed so far");
+  constexpr bool rot = Model::uses_rotation;
+  ParticleStore& p = s.particles;
+  const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),
+                           std::min(layout.owned.end, p.moving().end)};
+  if constexpr (rot) compute_half_angles(p, moving_owned);
+  BodyKicks kicks(s.rigid_bodies.size());
+  for (std::int64_t k = 0; k < steps; ++k, ++s.step) {
+    exchange_halo(world, halo, p,
+                  {&ParticleStore::x, &ParticleStore::y, &ParticleStore::theta,
+                   &ParticleStore::half_cos, &ParticleStore::half_sin});
+    if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
+    model.compute_strain(p, s.bonds, layout.owned);
+    exchange_halo(world, halo, p, {&ParticleStore::strain, &ParticleStore::pressure});
+    if (moving_owned.begin < moving_owned.end) {
+      model.compute_forces(p, s.bonds, moving_owned);
+      integrate_block<rot>(s, dt, moving_owned, kicks);
+    }
+  }
+}
+
+}  // namespace mpsolid
