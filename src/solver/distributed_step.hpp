@@ -57,8 +57,10 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
     if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
     model.compute_strain(p, s.bonds, layout.owned);
     exchange_halo(world, halo, p, {&ParticleStore::strain, &ParticleStore::pressure});
+    // The paper models' force pass reads no position: a block's forces and
+    // its integration follow each other, as in the team step.
     if (moving_owned.begin < moving_owned.end) {
-      model.compute_forces(p, s.bonds, moving_owned);
+      model.compute_forces_block(p, s.bonds, moving_owned);
       integrate_block<rot>(s, dt, moving_owned, kicks);
     }
   }

@@ -1,0 +1,78 @@
+// The decomposed step's speed (docs/mpi.md): the rod (paper model) stepped
+// on every rank of the launcher, against the same rod on one rank with
+// OpenMP threads. Run under mpirun:
+//   mpirun -np 2 build/release/bench/bench_ranks [l0_m] [steps] [model]
+// Prints, on rank 0, the median time per step of 5 rounds.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "kernels/model_registry.hpp"
+#include "src/core/parallel.hpp"
+#include "src/distributed/communicator.hpp"
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/local_state.hpp"
+#include "src/solver/case_loader.hpp"
+#include "src/solver/distributed_step.hpp"
+#include "src/solver/simulation.hpp"
+
+int main(int argc, char** argv) {
+  using namespace mpsolid;
+  MpiSession mpi(&argc, &argv);
+  const Communicator& world = Communicator::world();
+  const std::string l0 = argc > 1 ? argv[1] : "0.002";
+  const long steps = argc > 2 ? std::stol(argv[2]) : 2000;
+  const std::string model_name = argc > 3 ? argv[3] : "paper";
+  set_thread_count(1);
+  const CaseSpec spec = load_case(std::string(MPSOLID_SOURCE_DIR) + "/cases/shock_rod.toml",
+                                  {"l0=" + l0, "model=" + model_name});
+  Simulation base(spec);
+  const Decomposition d = decompose(base.state().bonds, world.size());
+  const HaloPlan plan = plan_halo(base.state().bonds, d, world.rank());
+  const LocalLayout layout = local_layout(d, plan, world.rank());
+  SolverState local = local_solver_state(base.state(), layout);
+  AnyModel model = make_model(spec.model, local.particles, local.bonds, spec.model_options);
+  const LocalHalo halo = local_halo(plan, layout);
+  std::vector<double> per_step;
+  for (int round = 0; round < 5; ++round) {
+    world.barrier();
+    const auto start = std::chrono::steady_clock::now();
+    std::visit(
+        [&](auto& m) {
+          if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
+            advance_decomposed(m, local, layout, halo, world, spec.dt, steps);
+        },
+        model);
+    world.barrier();
+    per_step.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+        static_cast<double>(steps));
+  }
+  std::sort(per_step.begin(), per_step.end());
+  // One rank: the team step (Simulation::advance, one thread) beside it.
+  double team = 0;
+  if (world.size() == 1) {
+    std::vector<double> rounds;
+    for (int round = 0; round < 5; ++round) {
+      const auto start = std::chrono::steady_clock::now();
+      base.advance(steps);
+      rounds.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+          static_cast<double>(steps));
+    }
+    std::sort(rounds.begin(), rounds.end());
+    team = rounds[2];
+  }
+  if (world.rank() == 0)
+    fmt::print(
+        "bench_ranks: {} rank(s), l0 = {} m, {} particles ({} owned on rank 0, {} "
+        "ghosts), {}: {:.2f} us per step (median of 5 rounds of {} steps)\n",
+        world.size(), l0, base.particles().size(), layout.owned.size(),
+        layout.size() - layout.owned.size(), model_name, per_step[2] * 1e6, steps);
+  if (team > 0)
+    fmt::print("bench_ranks: the team step at 1 thread: {:.2f} us per step\n", team * 1e6);
+  return 0;
+}
