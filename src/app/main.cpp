@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "src/core/parallel.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/solver/case_loader.hpp"
+#include "src/solver/ranked_stepper.hpp"
 
 namespace {
 // The thread count, with a warning on stderr when it exceeds the cores.
@@ -90,20 +92,30 @@ int main(int argc, char** argv) {
   }
 
   // Under an MPI launcher, MPI starts (a plain start never does: no MPI
-  // start-up cost, no launcher needed). The step runs on one rank until the
-  // decomposed step is built (docs/mpi.md): more ranks are refused, on
-  // every rank, before anything is read or written.
+  // start-up cost, no launcher needed). Rank 0 runs the command as always;
+  // the other ranks follow it (src/solver/ranked_stepper.hpp, docs/mpi.md).
   std::optional<MpiSession> mpi;
   if (launched_by_mpi()) mpi.emplace(&argc, &argv);
-  if (const Communicator& world = Communicator::world(); world.size() > 1) {
+  const Communicator& world = Communicator::world();
+  // One thread per rank unless asked for more: ranks already share the cores.
+  if (world.size() > 1 && threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr) threads = 1;
+  if (world.size() > 1 && study->parsed()) {
     if (world.rank() == 0)
       fmt::print(stderr,
-                 "mpsolid: error: started as {} MPI ranks, but this version runs a case on one "
-                 "rank (the decomposed step is not built yet: docs/mpi.md); run it without "
-                 "mpirun, or with -np 1, and use --threads for the cores\n",
-                 world.size());
+                 "mpsolid: error: mpsolid study runs on one rank (its runs use the "
+                 "cores); start it without mpirun\n");
     return kExitBadInput;
   }
+  set_ranked_runs(world.size() > 1);
+  if (world.size() > 1 && world.rank() > 0) {
+    install_stop_handlers();  // a batch system's SIGTERM reaches every rank: rank 0 stops the run
+    set_thread_count(choose_threads(threads, available_cores()).threads);
+    return follow_rank_zero();
+  }
+  // However rank 0 leaves, the followers are released.
+  struct ReleaseFollowers {
+    ~ReleaseFollowers() { followers::release(); }
+  } release_followers;
 
   if (study->parsed()) return launch_study(study->remaining());
 

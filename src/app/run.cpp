@@ -1,4 +1,5 @@
 #include "src/app/run.hpp"
+#include "src/distributed/communicator.hpp"
 
 #include <fmt/format.h>
 
@@ -275,6 +276,7 @@ RunFacts begin_segment(const RunOptions& options, std::int64_t start_step) {
   facts.command_line = options.command_line;
   facts.overrides = options.overrides;
   facts.threads = thread_count();
+  facts.ranks = Communicator::world().size();
   facts.start_step = start_step;
   facts.wait_at_start = team_wait_seconds();
   return facts;

@@ -28,10 +28,8 @@ VersionFacts version_facts() {
 
 std::string version_text() {
   const VersionFacts f = version_facts();
-  // The decomposed step is not in the solver yet: a build with MPI runs one
-  // rank like one without (docs/mpi.md).
   const std::string mpi = f.mpi == "none" ? std::string("MPI: not in this build")
-                                          : "MPI: " + f.mpi + " (the step runs on one rank)";
+                                          : "MPI: " + f.mpi + " (paper models over ranks)";
   return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; {}", f.version,
                      f.git_commit, f.compiler, f.build_type, f.cxx_flags, f.openmp, mpi);
 }

@@ -73,6 +73,31 @@ void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
 }
 
+void Communicator::broadcast(std::vector<double>& values) const {
+  if (size_ == 1) return;
+  std::int64_t count = static_cast<std::int64_t>(values.size());
+  broadcast(count);
+  values.resize(static_cast<std::size_t>(count));
+  MPI_Bcast(values.data(), static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
+void Communicator::broadcast(std::int64_t& value) const {
+  if (size_ > 1) MPI_Bcast(&value, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+}
+
+void Communicator::broadcast(std::string& text) const {
+  if (size_ == 1) return;
+  std::int64_t count = static_cast<std::int64_t>(text.size());
+  broadcast(count);
+  text.resize(static_cast<std::size_t>(count));
+  MPI_Bcast(text.data(), static_cast<int>(count), MPI_CHAR, 0, MPI_COMM_WORLD);
+}
+
+void Communicator::abort(int code) const {
+  if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
 MpiSession::MpiSession(int* argc, char*** argv) {
   int provided = 0;
   // Only the thread that started MPI calls it (OpenMP teams never do).
@@ -119,6 +144,12 @@ std::vector<std::vector<double>> Communicator::exchange(
 }
 
 void Communicator::barrier() const {}
+void Communicator::broadcast(std::vector<double>&) const {}
+void Communicator::broadcast(std::int64_t&) const {}
+void Communicator::broadcast(std::string&) const {}
+void Communicator::abort(int code) const {
+  std::exit(code);
+}
 
 MpiSession::MpiSession(int*, char***) {}
 MpiSession::~MpiSession() = default;

@@ -5,6 +5,7 @@
 // order, and pairwise exchanges with neighbouring ranks. Every call is
 // collective over the ranks involved and returns the same data at any
 // timing, so results never depend on message order.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,13 @@ class Communicator {
   std::vector<std::vector<double>> exchange(const std::vector<int>& peers,
                                             const std::vector<std::vector<double>>& out) const;
   void barrier() const;
+  // Rank 0's values, on every rank (`values` is resized on the others).
+  void broadcast(std::vector<double>& values) const;
+  void broadcast(std::int64_t& value) const;
+  void broadcast(std::string& text) const;
+  // Ends every rank of the run with `code` (a failure on one rank must not
+  // leave the others waiting in a collective call).
+  [[noreturn]] void abort(int code) const;
 
  private:
   Communicator(int rank, int size) : rank_(rank), size_(size) {}

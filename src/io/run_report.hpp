@@ -32,6 +32,7 @@ struct RunFacts {
   std::string command_line;
   std::vector<std::string> overrides;  // --set values of this segment
   int threads = 1;
+  int ranks = 1;           // MPI ranks (docs/mpi.md)
   std::int64_t steps = 0;  // steps advanced in this run
   double wall_seconds = 0;
   int frames = 0;

@@ -17,6 +17,9 @@
 namespace mpsolid {
 
 Simulation::Simulation(const CaseSpec& spec) {
+  const Communicator& world = Communicator::world();
+  const bool ranked = ranked_runs();
+  if (ranked && world.rank() == 0) followers::send_case(spec.resolved_toml);
   set_flush_subnormals(spec.flush_subnormals);
   TimeStepChoice choice = fix_time_step(spec, timers_);
   spec_ = std::move(choice.spec);
@@ -27,12 +30,18 @@ Simulation::Simulation(const CaseSpec& spec) {
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
+  if (ranked) ranked_ = std::make_shared<RankedStepper>(spec_, state_);
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }
 
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
+  if (ranked_) {
+    if (Communicator::world().rank() == 0) followers::send_steps(steps);
+    ranked_->advance(state_, steps);
+    return;
+  }
   std::visit([&](auto& model) { advance_steps(model, state_, spec_.dt, timers_, steps); }, model_);
 }
 

@@ -3,6 +3,7 @@
 // phase timers, its case fixed (dt chosen). The run loop with outputs lives in
 // src/app/run.hpp.
 #include <cstdint>
+#include <memory>
 
 #include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
@@ -10,15 +11,19 @@
 #include "src/core/solver_state.hpp"
 #include "src/core/stability.hpp"
 #include "src/core/timers.hpp"
+#include "src/solver/ranked_stepper.hpp"
 #include "src/solver/stable_step.hpp"
 
 namespace mpsolid {
 
 class Simulation {
  public:
+  // Under several MPI ranks, rank 0's simulation first sends the case to
+  // the followers (src/solver/ranked_stepper.hpp).
   explicit Simulation(const CaseSpec& spec);
 
-  // Advances `steps` time steps (no output).
+  // Advances `steps` time steps (no output); over several MPI ranks, every
+  // rank steps its own particles (rank 0 tells the followers to).
   void advance(std::int64_t steps);
   // Recomputes the position-dependent fields (half angles, strain, pressure)
   // for the current state, as outputs and diagnostics need.
@@ -56,6 +61,7 @@ class Simulation {
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
+  std::shared_ptr<RankedStepper> ranked_;  // several MPI ranks only
 };
 
 }  // namespace mpsolid

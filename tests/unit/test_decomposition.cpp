@@ -114,7 +114,9 @@ TEST(Decomposition, LocalStateKeepsTheOwnedRowsAndTheGhostsBondsToThem) {
       const LocalLayout layout = local_layout(d, plan_halo(bonds, d, r), r);
       ASSERT_TRUE(std::is_sorted(layout.global_of.begin(), layout.global_of.end()));
       ASSERT_EQ(layout.owned.size(), d.owned(r).size());
-      if (!layout.owned.empty()) EXPECT_EQ(layout.global_of[layout.owned.begin], d.owned(r).begin);
+      if (!layout.owned.empty()) {
+        EXPECT_EQ(layout.global_of[layout.owned.begin], d.owned(r).begin);
+      }
       const ParticleStore local = local_particles(global.particles, layout);
       const BondTable lb = local_bonds(bonds, local, layout);
       for (std::size_t k = 0; k < layout.size(); ++k) {
