@@ -14,7 +14,7 @@ int Decomposition::owner_of(std::size_t i) const {
   return static_cast<int>(after - starts.begin()) - 1;
 }
 
-Decomposition decompose(const BondTable& bonds, int ranks) {
+Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole) {
   if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
   const std::size_t n = bonds.particle_count();
   const std::size_t chunks = (n + kSumChunk - 1) / kSumChunk;
@@ -33,8 +33,11 @@ Decomposition decompose(const BondTable& bonds, int ranks) {
     const double target = work[chunks] * r / ranks;
     while (c < chunks && work[c + 1] <= target) ++c;
     if (c < chunks && target - work[c] > work[c + 1] - target) ++c;
+    std::size_t cut = std::min(n, c * kSumChunk);
+    for (const Range& whole : keep_whole)
+      if (cut > whole.begin && cut < whole.end) cut = whole.begin / kSumChunk * kSumChunk;
     d.starts[static_cast<std::size_t>(r)] =
-        std::max(d.starts[static_cast<std::size_t>(r) - 1], std::min(n, c * kSumChunk));
+        std::max(d.starts[static_cast<std::size_t>(r) - 1], cut);
   }
   return d;
 }

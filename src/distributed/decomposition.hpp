@@ -32,8 +32,12 @@ struct Decomposition {
 
 // Contiguous chunk-aligned ranges over the bond table's particles for
 // `ranks` ranks, balanced by bond entries + particles. A rank may own
-// nothing when there are fewer chunks than ranks.
-Decomposition decompose(const BondTable& bonds, int ranks);
+// nothing when there are fewer chunks than ranks. No cut falls inside a
+// range of `keep_whole` (rigid and loaded bodies, whose sums run over all
+// their particles): such a cut moves down to the chunk boundary at or
+// before the range's start.
+Decomposition decompose(const BondTable& bonds, int ranks,
+                        const std::vector<Range>& keep_whole = {});
 
 // One rank's halo: its ghosts, and per neighbouring rank what it sends
 // (its own particles that rank needs) and receives (that rank's particles

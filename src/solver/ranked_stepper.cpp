@@ -72,7 +72,11 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
   if (spec.model != "paper" && spec.model != "paper_conservative")
     refuse("the " + spec.model + " model");
   if (spec.contact.enabled) refuse("contact");
-  const Decomposition d = decompose(global.bonds, world.size());
+  // Rigid and loaded bodies stay on one rank (their sums run over all of them).
+  std::vector<Range> whole;
+  for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
+  for (const StepLoad& l : global.loads) whole.push_back(l.range);
+  const Decomposition d = decompose(global.bonds, world.size(), whole);
   const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
   Parts& p = *parts_;
   p.layout = local_layout(d, plan, world.rank());

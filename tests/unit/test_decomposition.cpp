@@ -65,6 +65,29 @@ TEST(Decomposition, RangesAreChunkAlignedCoverEverythingAndBalanceTheWork) {
   }
 }
 
+// A rigid or loaded body is never cut: at 0.25 mm the rod's plate spans
+// twelve chunks, and sixteen ranks would split it.
+TEST(Decomposition, BodiesKeptWholeAreNeverCut) {
+  PhaseTimers timers;
+  const SolverState s = set_up(testing::rod_case({"l0=0.00025"}), timers);
+  const Range plate = s.body_ranges.at(0);  // bodies in name order: plate, rod, wall
+  ASSERT_GT(plate.size(), 10 * kSumChunk);
+  const Decomposition free = decompose(s.bonds, 16);
+  bool cut_before = false;
+  for (const std::size_t start : free.starts)
+    cut_before |= start > plate.begin && start < plate.end;
+  EXPECT_TRUE(cut_before) << "the plain decomposition should cut the plate here";
+  const Decomposition kept = decompose(s.bonds, 16, {plate});
+  for (const std::size_t start : kept.starts) {
+    EXPECT_FALSE(start > plate.begin && start < plate.end) << start;
+    if (start != s.bonds.particle_count()) {
+      EXPECT_EQ(start % kSumChunk, 0u);
+    }
+  }
+  EXPECT_EQ(kept.starts.back(), s.bonds.particle_count());
+  EXPECT_TRUE(std::is_sorted(kept.starts.begin(), kept.starts.end()));
+}
+
 TEST(Decomposition, HaloHoldsExactlyThePartnersARankDoesNotOwn) {
   const BondTable bonds = rod_bonds("0.001");
   for (int ranks : {2, 3, 5}) {
