@@ -10,11 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/model_registry.hpp"
 #include "src/core/parallel.hpp"
 #include "src/distributed/communicator.hpp"
-#include "src/distributed/decomposition.hpp"
-#include "src/distributed/local_state.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/simulation.hpp"
@@ -30,22 +27,12 @@ int main(int argc, char** argv) {
   const CaseSpec spec = load_case(std::string(MPSOLID_SOURCE_DIR) + "/cases/shock_rod.toml",
                                   {"l0=" + l0, "model=" + model_name});
   Simulation base(spec);
-  const Decomposition d = decompose(base.state().bonds, world.size());
-  const HaloPlan plan = plan_halo(base.state().bonds, d, world.rank());
-  const LocalLayout layout = local_layout(d, plan, world.rank());
-  SolverState local = local_solver_state(base.state(), layout);
-  AnyModel model = make_model(spec.model, local.particles, local.bonds, spec.model_options);
-  const LocalHalo halo = local_halo(plan, layout);
+  RankPart part = make_rank_part(spec, base.state(), world);
   std::vector<double> per_step;
   for (int round = 0; round < 5; ++round) {
     world.barrier();
     const auto start = std::chrono::steady_clock::now();
-    std::visit(
-        [&](auto& m) {
-          if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-            advance_decomposed(m, local, layout, halo, world, spec.dt, steps);
-        },
-        model);
+    advance_rank_part(part, world, spec.dt, steps);
     world.barrier();
     per_step.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
@@ -70,8 +57,8 @@ int main(int argc, char** argv) {
     fmt::print(
         "bench_ranks: {} rank(s), l0 = {} m, {} particles ({} owned on rank 0, {} "
         "ghosts), {}: {:.2f} us per step (median of 5 rounds of {} steps)\n",
-        world.size(), l0, base.particles().size(), layout.owned.size(),
-        layout.size() - layout.owned.size(), model_name, per_step[2] * 1e6, steps);
+        world.size(), l0, base.particles().size(), part.layout.owned.size(),
+        part.layout.size() - part.layout.owned.size(), model_name, per_step[2] * 1e6, steps);
   if (team > 0)
     fmt::print("bench_ranks: the team step at 1 thread: {:.2f} us per step\n", team * 1e6);
   return 0;

@@ -1,5 +1,8 @@
 #include "src/solver/distributed_step.hpp"
 
+#include <stdexcept>
+#include <variant>
+
 namespace mpsolid {
 
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
@@ -31,6 +34,35 @@ void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleSto
     for (const std::uint32_t i : halo.receive[k])
       for (const auto array : arrays) (p.*array)[i] = in[k][at++];
   }
+}
+
+RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
+                        const Communicator& world) {
+  // Rigid and loaded bodies stay on one rank (their sums run over all of them).
+  std::vector<Range> whole;
+  for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
+  for (const StepLoad& l : global.loads) whole.push_back(l.range);
+  // The models kDecomposable admits, by name: checked before a model is made
+  // on the local state (a model may refuse a ghost's partial row).
+  if (spec.model != PaperModel::name && spec.model != PaperConservativeModel::name)
+    throw std::invalid_argument("the " + spec.model + " model");
+  const Decomposition d = decompose(global.bonds, world.size(), whole);
+  const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
+  RankPart part;
+  part.layout = local_layout(d, plan, world.rank());
+  part.halo = local_halo(plan, part.layout);
+  part.local = local_solver_state(global, part.layout);
+  part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options);
+  return part;
+}
+
+void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps) {
+  std::visit(
+      [&](auto& m) {
+        if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
+          advance_decomposed(m, part.local, part.layout, part.halo, world, dt, steps);
+      },
+      part.model);
 }
 
 }  // namespace mpsolid

@@ -14,7 +14,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "kernels/model_registry.hpp"
 #include "kernels/paper_model.hpp"
+#include "src/case/case_spec.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/distributed/local_state.hpp"
 #include "src/solver/step.hpp"
@@ -65,5 +67,22 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
     }
   }
 }
+
+// One rank's part of a case: its particles and ghosts, its halo, its local
+// state and the model made from it.
+struct RankPart {
+  LocalLayout layout;
+  LocalHalo halo;
+  SolverState local;
+  AnyModel model;
+};
+
+// This rank's part of the set-up state `global`, cut with the rigid and
+// loaded bodies kept whole. Throws std::invalid_argument for a case the
+// decomposed step does not cover (a model other than the paper models).
+RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const Communicator& world);
+
+// Advances the part by `steps` decomposed steps of dt.
+void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps);
 
 }  // namespace mpsolid

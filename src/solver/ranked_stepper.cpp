@@ -3,10 +3,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
-#include <variant>
 
-#include "src/distributed/decomposition.hpp"
-#include "src/distributed/local_state.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/simulation.hpp"
@@ -14,10 +11,7 @@
 namespace mpsolid {
 
 struct RankedStepper::Parts {
-  LocalLayout layout;
-  LocalHalo halo;
-  SolverState local;
-  AnyModel model;
+  RankPart part;
   double dt = 0;
 };
 
@@ -69,32 +63,20 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
         "mpirun, or with -np 1) and use --threads (docs/mpi.md)",
         spec.source, why, world.size(), spec.name));
   };
-  if (spec.model != "paper" && spec.model != "paper_conservative")
-    refuse("the " + spec.model + " model");
   if (spec.contact.enabled) refuse("contact");
-  // Rigid and loaded bodies stay on one rank (their sums run over all of them).
-  std::vector<Range> whole;
-  for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
-  for (const StepLoad& l : global.loads) whole.push_back(l.range);
-  const Decomposition d = decompose(global.bonds, world.size(), whole);
-  const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
-  Parts& p = *parts_;
-  p.layout = local_layout(d, plan, world.rank());
-  p.halo = local_halo(plan, p.layout);
   try {
-    p.local = local_solver_state(global, p.layout);
+    parts_->part = make_rank_part(spec, global, world);
   } catch (const std::invalid_argument& e) {
     refuse(e.what());
   }
-  p.model = make_model(spec.model, p.local.particles, p.local.bonds, spec.model_options);
-  p.dt = spec.dt;
+  parts_->dt = spec.dt;
 }
 
 RankedStepper::~RankedStepper() = default;
 
 void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   const Communicator& world = Communicator::world();
-  Parts& p = *parts_;
+  RankPart& p = parts_->part;
   // Rank 0's state to every rank (after a resume or a restore only rank 0 has it).
   std::vector<double> state = world.rank() == 0 ? pack_state(global) : std::vector<double>{};
   world.broadcast(state);
@@ -112,12 +94,7 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
     l.active = g.active, l.cx_on = g.cx_on, l.cy_on = g.cy_on;
   }
   p.local.step = global.step;
-  std::visit(
-      [&](auto& m) {
-        if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-          advance_decomposed(m, p.local, p.layout, p.halo, world, p.dt, steps);
-      },
-      p.model);
+  advance_rank_part(p, world, parts_->dt, steps);
   // Every rank's own particles, bodies and loads back into the whole state.
   const Range owned = p.layout.owned;
   for (const StateArray& a : kStateArrays) {

@@ -104,20 +104,10 @@ TEST(Ranks, DecomposedPaperStepGivesTheSerialBits) {
     Simulation serial(spec);
     serial.advance(kSteps);
     Simulation base(spec);  // the same set-up on every rank
-    const Decomposition d = decompose(base.state().bonds, world.size());
-    const HaloPlan plan = plan_halo(base.state().bonds, d, world.rank());
-    const LocalLayout layout = local_layout(d, plan, world.rank());
-    SolverState local = local_solver_state(base.state(), layout);
-    AnyModel local_model = make_model(spec.model, local.particles, local.bonds, spec.model_options);
-    const LocalHalo halo = local_halo(plan, layout);
-    std::visit(
-        [&](auto& m) {
-          if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-            advance_decomposed(m, local, layout, halo, world, spec.dt, kSteps);
-          else
-            FAIL() << "not a decomposed model";
-        },
-        local_model);
+    RankPart part = make_rank_part(spec, base.state(), world);
+    advance_rank_part(part, world, spec.dt, kSteps);
+    const SolverState& local = part.local;
+    const LocalLayout& layout = part.layout;
     EXPECT_EQ(local.step, kSteps);
     const ParticleStore& mine = local.particles;
     for (const StateArray& array : kStateArrays) {
