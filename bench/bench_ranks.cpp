@@ -59,6 +59,15 @@ int main(int argc, char** argv) {
         "ghosts), {}: {:.2f} us per step (median of 5 rounds of {} steps)\n",
         world.size(), l0, base.particles().size(), part.layout.owned.size(),
         part.layout.size() - part.layout.owned.size(), model_name, per_step[2] * 1e6, steps);
+  // Each rank's halo per step: its exchanges' wall time and bytes sent.
+  const double total_steps = 5.0 * static_cast<double>(steps);
+  const std::vector<double> halo = world.all_gather(
+      {part.halo_cost.seconds / total_steps, part.halo_cost.bytes_sent / total_steps});
+  if (world.rank() == 0)
+    for (int r = 0; r < world.size(); ++r)
+      fmt::print("bench_ranks:   rank {}: halo {:.2f} us and {:.0f} bytes sent per step\n", r,
+                 halo[2 * static_cast<std::size_t>(r)] * 1e6,
+                 halo[2 * static_cast<std::size_t>(r) + 1]);
   if (team > 0)
     fmt::print("bench_ranks: the team step at 1 thread: {:.2f} us per step\n", team * 1e6);
   return 0;

@@ -1,5 +1,6 @@
 #include "src/solver/distributed_step.hpp"
 
+#include <chrono>
 #include <stdexcept>
 #include <variant>
 
@@ -20,7 +21,9 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
 }
 
 void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleStore& p,
-                   std::initializer_list<std::vector<double> ParticleStore::*> arrays) {
+                   std::initializer_list<std::vector<double> ParticleStore::*> arrays,
+                   HaloCost& cost) {
+  const auto start = std::chrono::steady_clock::now();
   const std::size_t width = arrays.size();
   std::vector<std::vector<double>> out(halo.peers.size());
   for (std::size_t k = 0; k < halo.peers.size(); ++k) {
@@ -28,12 +31,14 @@ void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleSto
     for (const std::uint32_t i : halo.send[k])
       for (const auto array : arrays) out[k].push_back((p.*array)[i]);
   }
+  for (const auto& message : out) cost.bytes_sent += 8.0 * static_cast<double>(message.size());
   const std::vector<std::vector<double>> in = world.exchange(halo.peers, out);
   for (std::size_t k = 0; k < halo.peers.size(); ++k) {
     std::size_t at = 0;
     for (const std::uint32_t i : halo.receive[k])
       for (const auto array : arrays) (p.*array)[i] = in[k][at++];
   }
+  cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
@@ -60,7 +65,8 @@ void advance_rank_part(RankPart& part, const Communicator& world, double dt, std
   std::visit(
       [&](auto& m) {
         if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-          advance_decomposed(m, part.local, part.layout, part.halo, world, dt, steps);
+          advance_decomposed(m, part.local, part.layout, part.halo, world, dt, steps,
+                             part.halo_cost);
       },
       part.model);
 }

@@ -31,9 +31,16 @@ struct LocalHalo {
 };
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
 
+// What the halos cost this rank: wall time in exchanges, bytes sent.
+struct HaloCost {
+  double seconds = 0;
+  double bytes_sent = 0;
+};
+
 // Gives the ghosts their owners' values of the given arrays.
 void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleStore& p,
-                   std::initializer_list<std::vector<double> ParticleStore::*> arrays);
+                   std::initializer_list<std::vector<double> ParticleStore::*> arrays,
+                   HaloCost& cost);
 
 template <class Model>
 inline constexpr bool kDecomposable =
@@ -44,7 +51,7 @@ inline constexpr bool kDecomposable =
 template <class Model>
 void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
                         const LocalHalo& halo, const Communicator& world, double dt,
-                        std::int64_t steps) {
+                        std::int64_t steps, HaloCost& cost) {
   static_assert(kDecomposable<Model>, "only the paper models are decomposed so far");
   constexpr bool rot = Model::uses_rotation;
   ParticleStore& p = s.particles;
@@ -55,10 +62,11 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
   for (std::int64_t k = 0; k < steps; ++k, ++s.step) {
     exchange_halo(world, halo, p,
                   {&ParticleStore::x, &ParticleStore::y, &ParticleStore::theta,
-                   &ParticleStore::half_cos, &ParticleStore::half_sin});
+                   &ParticleStore::half_cos, &ParticleStore::half_sin},
+                  cost);
     if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
     model.compute_strain(p, s.bonds, layout.owned);
-    exchange_halo(world, halo, p, {&ParticleStore::strain, &ParticleStore::pressure});
+    exchange_halo(world, halo, p, {&ParticleStore::strain, &ParticleStore::pressure}, cost);
     // The paper models' force pass reads no position: a block's forces and
     // its integration follow each other, as in the team step.
     if (moving_owned.begin < moving_owned.end) {
@@ -75,6 +83,7 @@ struct RankPart {
   LocalHalo halo;
   SolverState local;
   AnyModel model;
+  HaloCost halo_cost;  // summed over every step so far
 };
 
 // This rank's part of the set-up state `global`, cut with the rigid and
