@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The executable under mpirun (docs/mpi.md), where MPI is installed:
-#  - the rod (paper model) at 2 and 3 ranks gives the serial run's bits:
-#    history.csv, every frame, the final checkpoint (compare_runs.py);
+#  - the rod (paper model) at 2 and 3 ranks, and 2 ranks x 2 threads, gives
+#    the serial run's bits: history.csv, every frame, the final checkpoint
+#    (compare_runs.py);
 #  - a checkpoint written at 2 ranks resumes at 1 and at 3 ranks to the
 #    same bits;
 #  - a case the decomposed step does not cover yet (finite_strain) is
@@ -59,6 +60,10 @@ for ranks in 2 3; do
   [[ $recorded == "$ranks" ]] && ok "$ranks ranks: run.json says ranks = $ranks" ||
     fail "$ranks ranks: run.json says ranks = $recorded"
 done
+
+# Ranks x threads: 2 x 2.
+mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2
+[[ $rc -eq 0 ]] && same "2 ranks x 2 threads" "$TMP/threads2" || fail "2 ranks x 2 threads: exit $rc"
 
 # Half the run at 2 ranks, the rest at 1 and at 3.
 mpi 2 half run "$CASE" "${SETS[@]}" --set time.end=1e-4 --out "$TMP/half"
