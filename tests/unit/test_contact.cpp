@@ -195,6 +195,48 @@ TEST(Contact, ClosestPairIsTheAllPairsMinimumOfPairsThatMayTouch) {
   EXPECT_FALSE(closest_contact(c, p, bonds, 0.5 * closest.distance).found);
 }
 
+// Self-contact: a strip folded so that its two ends meet repels its own
+// particles (they are not bonded: 30 sites apart at set-up), and only them.
+TEST(Contact, ABodyFoldedOntoItselfRepelsItsOwnParticles) {
+  const std::string strip = R"(
+[bodies.strip]
+kind = "elastic"
+material = "rubber"
+x = [0.0, 0.030]
+y = [0.0, 0.003]
+)";
+  Simulation sim(load_case_text(contact_case(strip, "2e-7"), "strip.toml"));
+  ParticleStore& p = sim.particles();
+  ContactState& c = sim.state().contact;
+  ASSERT_EQ(c.size(), p.size());  // three rows: every particle is on the surface
+  // Fold it: the right half turned over onto the left, its top row 0.8 l0
+  // above the left half's top row.
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.x0[i] > 0.015) {
+      p.x[i] = 0.030 - p.x0[i];
+      p.y[i] = 0.0058 - p.y0[i];  // top row (y0 = 2.5 mm) to 3.3 mm
+    }
+  build_contact_list(c, p, sim.state().bonds);
+  compute_contact_forces(c, p, {c.first_moving, c.size()}, 0);
+  int pushed = 0;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const std::size_t i = c.candidates[a];
+    if (c.force_y[a] == 0.0) continue;
+    ++pushed;
+    // The lower half is pushed down, the folded half up.
+    if (p.x0[i] <= 0.015) {
+      EXPECT_LT(c.force_y[a], 0.0) << i;
+    } else {
+      EXPECT_GT(c.force_y[a], 0.0) << i;
+    }
+  }
+  EXPECT_GE(pushed, 2 * 14);  // the facing rows, all along the fold but its hinge
+  const ClosestContact closest = closest_contact(c, p, sim.state().bonds, 0.003);
+  ASSERT_TRUE(closest.found);
+  EXPECT_EQ(p.body[closest.i], p.body[closest.j]);
+  EXPECT_NEAR(closest.distance, 0.8e-3, 1e-9);
+}
+
 TEST(Contact, CandidatesAreTheOuterTwoRowsOfEachBody) {
   Simulation sim(load_case_text(drop_toml("2e-7"), "drop.toml"));
   const ContactState& c = sim.state().contact;
