@@ -46,10 +46,22 @@ Json thread_facts_json(const RunFacts& facts) {
   Json sizes = Json::object();
   for (const auto& [size, seconds] : facts.team_size_seconds) sizes[std::to_string(size)] = seconds;
   const double capacity = facts.wall_seconds * facts.threads;
-  return {{"thread_wait_seconds", facts.thread_wait_seconds},
-          {"thread_wait_share", capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0},
-          {"team_size_seconds", sizes},
-          {"team_size_changes", facts.team_size_changes}};
+  Json facts_json = {
+      {"thread_wait_seconds", facts.thread_wait_seconds},
+      {"thread_wait_share", capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0},
+      {"team_size_seconds", sizes},
+      {"team_size_changes", facts.team_size_changes}};
+  // Over several ranks: each rank's halo exchanges (waiting for the slowest
+  // rank included) and the bytes it sent.
+  if (!facts.rank_halo.empty()) {
+    Json ranks = Json::array();
+    for (std::size_t r = 0; r < facts.rank_halo.size(); ++r)
+      ranks.push_back({{"rank", r},
+                       {"halo_seconds", facts.rank_halo[r].first},
+                       {"halo_bytes_sent", facts.rank_halo[r].second}});
+    facts_json["rank_halo"] = ranks;
+  }
+  return facts_json;
 }
 }  // namespace
 

@@ -127,6 +127,10 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
     g.active = all_loads[at + 1] != 0.0, g.cx_on = all_loads[at + 2], g.cy_on = all_loads[at + 3];
   }
   global.step = p.local.step;
+  const std::vector<double> halo = world.all_gather({p.halo_cost.seconds, p.halo_cost.bytes_sent});
+  rank_halo_.clear();
+  for (std::size_t r = 0; r + 1 < halo.size(); r += 2)
+    rank_halo_.emplace_back(halo[r], halo[r + 1]);
 }
 
 namespace {

@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
@@ -30,10 +32,14 @@ class RankedStepper {
   // Every rank: rank 0's state to all, `steps` decomposed steps, the whole
   // state back on every rank.
   void advance(SolverState& global, std::int64_t steps);
+  // Every rank's halo cost so far (seconds, bytes sent), gathered after each
+  // batch: rank 0 reports them in run.json.
+  const std::vector<std::pair<double, double>>& rank_halo() const { return rank_halo_; }
 
  private:
   struct Parts;
   std::unique_ptr<Parts> parts_;
+  std::vector<std::pair<double, double>> rank_halo_;
 };
 
 // Whether simulations of this process step over the ranks: the command line

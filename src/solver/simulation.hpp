@@ -49,6 +49,11 @@ class Simulation {
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
+  // Over several MPI ranks: each rank's halo cost so far (seconds, bytes
+  // sent); empty on one rank.
+  std::vector<std::pair<double, double>> rank_halo() const {
+    return ranked_ ? ranked_->rank_halo() : std::vector<std::pair<double, double>>{};
+  }
   const PhaseTimers& timers() const { return timers_; }
 
  private:

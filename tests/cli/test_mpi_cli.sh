@@ -7,7 +7,7 @@
 #    same bits;
 #  - a case the decomposed step does not cover yet (finite_strain) is
 #    refused with exit 2, one message (rank 0's) and nothing written;
-#  - run.json records the ranks.
+#  - run.json records the ranks and each rank's halo time and bytes.
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -55,9 +55,15 @@ for ranks in 2 3; do
     continue
   fi
   same "$ranks ranks" "$TMP/ranks$ranks"
-  recorded=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["ranks"])' \
+  recorded=$(/usr/bin/python3 -c '
+import json, sys
+r = json.load(open(sys.argv[1]))
+halo = r.get("rank_halo", [])
+ok = len(halo) == r["ranks"] and all(h["halo_bytes_sent"] > 0 and h["halo_seconds"] >= 0 for h in halo)
+print(r["ranks"], "with a halo entry per rank" if ok else "WITHOUT a halo entry per rank")' \
     "$TMP/ranks$ranks/run.json")
-  [[ $recorded == "$ranks" ]] && ok "$ranks ranks: run.json says ranks = $ranks" ||
+  [[ $recorded == "$ranks with a halo entry per rank" ]] &&
+    ok "$ranks ranks: run.json says ranks = $recorded" ||
     fail "$ranks ranks: run.json says ranks = $recorded"
 done
 
