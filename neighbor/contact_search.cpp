@@ -29,21 +29,16 @@ struct NearCandidates {
 };
 NearCandidates near_candidates(const ContactState& c, const ParticleStore& p, double cutoff) {
   NearCandidates near;
-  std::vector<std::uint32_t> finite;
+  std::vector<std::uint32_t> finite;  // the candidates searched, and their positions
+  std::vector<double> fx, fy;
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double x = p.x[c.candidates[a]], y = p.y[c.candidates[a]];
     near.x.push_back(x);
     near.y.push_back(y);
-    if (std::isfinite(x) && std::isfinite(y)) finite.push_back(static_cast<std::uint32_t>(a));
-  }
-  if (finite.size() == c.size()) {
-    near.lists = find_neighbors_sparse_cells(near.x, near.y, cutoff);
-    return near;
-  }
-  std::vector<double> fx, fy;
-  for (const std::uint32_t a : finite) {
-    fx.push_back(near.x[a]);
-    fy.push_back(near.y[a]);
+    if (!std::isfinite(x) || !std::isfinite(y)) continue;
+    finite.push_back(static_cast<std::uint32_t>(a));
+    fx.push_back(x);
+    fy.push_back(y);
   }
   const NeighborLists found = find_neighbors_sparse_cells(fx, fy, cutoff);
   near.lists.offsets.assign(c.size() + 1, 0);

@@ -44,29 +44,21 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& mine) co
   return all;
 }
 
-std::vector<std::vector<double>> Communicator::exchange(
-    const std::vector<int>& peers, const std::vector<std::vector<double>>& out) const {
-  if (peers.size() != out.size()) throw std::invalid_argument("exchange: one message per peer");
+void Communicator::exchange(const std::vector<int>& peers,
+                            const std::vector<std::vector<double>>& out,
+                            std::vector<std::vector<double>>& in) const {
+  if (peers.size() != out.size() || peers.size() != in.size())
+    throw std::invalid_argument("exchange: one message each way per peer");
   const std::size_t n = peers.size();
-  std::vector<int> in_counts(n), out_counts(n);
   std::vector<MPI_Request> requests(2 * n);
-  constexpr int kCountTag = 1, kDataTag = 2;
+  constexpr int kTag = 1;
   for (std::size_t k = 0; k < n; ++k) {
-    out_counts[k] = static_cast<int>(out[k].size());
-    MPI_Irecv(&in_counts[k], 1, MPI_INT, peers[k], kCountTag, MPI_COMM_WORLD, &requests[k]);
-    MPI_Isend(&out_counts[k], 1, MPI_INT, peers[k], kCountTag, MPI_COMM_WORLD, &requests[n + k]);
+    MPI_Irecv(in[k].data(), static_cast<int>(in[k].size()), MPI_DOUBLE, peers[k], kTag,
+              MPI_COMM_WORLD, &requests[k]);
+    MPI_Isend(out[k].data(), static_cast<int>(out[k].size()), MPI_DOUBLE, peers[k], kTag,
+              MPI_COMM_WORLD, &requests[n + k]);
   }
   MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
-  std::vector<std::vector<double>> in(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    in[k].resize(static_cast<std::size_t>(in_counts[k]));
-    MPI_Irecv(in[k].data(), in_counts[k], MPI_DOUBLE, peers[k], kDataTag, MPI_COMM_WORLD,
-              &requests[k]);
-    MPI_Isend(out[k].data(), out_counts[k], MPI_DOUBLE, peers[k], kDataTag, MPI_COMM_WORLD,
-              &requests[n + k]);
-  }
-  MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
-  return in;
 }
 
 void Communicator::barrier() const {
@@ -135,12 +127,14 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& mine) co
   return mine;
 }
 
-std::vector<std::vector<double>> Communicator::exchange(
-    const std::vector<int>& peers, const std::vector<std::vector<double>>& out) const {
-  if (peers.size() != out.size()) throw std::invalid_argument("exchange: one message per peer");
+void Communicator::exchange(const std::vector<int>& peers,
+                            const std::vector<std::vector<double>>& out,
+                            std::vector<std::vector<double>>& in) const {
+  if (peers.size() != out.size() || peers.size() != in.size())
+    throw std::invalid_argument("exchange: one message each way per peer");
   for (const int peer : peers)
     if (peer != 0) throw std::invalid_argument("exchange: a one-rank run has no other rank");
-  return out;  // a rank exchanging with itself gets its own message back
+  in = out;  // a rank exchanging with itself gets its own message back
 }
 
 void Communicator::barrier() const {}

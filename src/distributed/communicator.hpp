@@ -21,10 +21,13 @@ class Communicator {
 
   // Every rank's values, concatenated in rank order, on every rank.
   std::vector<double> all_gather(const std::vector<double>& mine) const;
-  // Sends out[k] to rank peers[k] and returns what peers[k] sent to this
-  // rank, in the same order. Every peer must list this rank in its own call.
-  std::vector<std::vector<double>> exchange(const std::vector<int>& peers,
-                                            const std::vector<std::vector<double>>& out) const;
+  // Sends out[k] to rank peers[k] and receives what peers[k] sends this
+  // rank into in[k], which must already have that message's size (both
+  // sides know it from the halo plan: no count is exchanged, and the
+  // caller's buffers are reused from step to step). Every peer must list
+  // this rank in its own call.
+  void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
+                std::vector<std::vector<double>>& in) const;
   void barrier() const;
   // Rank 0's values, on every rank (`values` is resized on the others).
   void broadcast(std::vector<double>& values) const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace mpsolid {
 
@@ -91,6 +92,24 @@ Range to_local(Range global, const LocalLayout& layout) {
   const std::size_t shift = layout.owned_global.begin - layout.owned.begin;
   return {global.begin - shift, global.end - shift};
 }
+
+// The items (rigid bodies, loads) whose particles this rank owns, in local
+// indices; one whose particles are split between ranks is refused.
+template <class Item>
+std::vector<Item> owned_items(const std::vector<Item>& items, const LocalLayout& layout,
+                              const std::string& what) {
+  std::vector<Item> kept;
+  for (const Item& item : items) {
+    const Ownership o = ownership(item.range, layout);
+    if (o == Ownership::split)
+      throw std::invalid_argument(what + " '" + item.name +
+                                  "' is split between ranks: not supported yet (docs/mpi.md)");
+    if (o == Ownership::elsewhere) continue;
+    kept.push_back(item);
+    kept.back().range = to_local(item.range, layout);
+  }
+  return kept;
+}
 }  // namespace
 
 SolverState local_solver_state(const SolverState& global, const LocalLayout& layout) {
@@ -101,26 +120,8 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   s.bonds = local_bonds(global.bonds, s.particles, layout);
   s.step = global.step;
   s.peak_work = global.peak_work;
-  for (const RigidBody& body : global.rigid_bodies) {
-    const Ownership o = ownership(body.range, layout);
-    if (o == Ownership::split)
-      throw std::invalid_argument("rigid body '" + body.name +
-                                  "' is split between ranks: not supported yet (docs/mpi.md)");
-    if (o == Ownership::elsewhere) continue;
-    RigidBody local = body;
-    local.range = to_local(body.range, layout);
-    s.rigid_bodies.push_back(std::move(local));
-  }
-  for (const StepLoad& load : global.loads) {
-    const Ownership o = ownership(load.range, layout);
-    if (o == Ownership::split)
-      throw std::invalid_argument("the body of load '" + load.name +
-                                  "' is split between ranks: not supported yet (docs/mpi.md)");
-    if (o == Ownership::elsewhere) continue;
-    StepLoad local = load;
-    local.range = to_local(load.range, layout);
-    s.loads.push_back(std::move(local));
-  }
+  s.rigid_bodies = owned_items(global.rigid_bodies, layout, "rigid body");
+  s.loads = owned_items(global.loads, layout, "the body of load");
   for (const HeldRange& hold : global.holds) {
     const Range mine = layout.owned_global;
     const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};

@@ -20,23 +20,26 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
   return halo;
 }
 
-void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleStore& p,
+void exchange_halo(const Communicator& world, LocalHalo& halo, ParticleStore& p,
                    std::initializer_list<std::vector<double> ParticleStore::*> arrays,
                    HaloCost& cost) {
   const auto start = std::chrono::steady_clock::now();
-  const std::size_t width = arrays.size();
-  std::vector<std::vector<double>> out(halo.peers.size());
-  for (std::size_t k = 0; k < halo.peers.size(); ++k) {
-    out[k].reserve(width * halo.send[k].size());
+  const std::size_t n = halo.peers.size();
+  halo.out.resize(n);
+  halo.in.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    std::vector<double>& message = halo.out[k];
+    message.clear();
     for (const std::uint32_t i : halo.send[k])
-      for (const auto array : arrays) out[k].push_back((p.*array)[i]);
+      for (const auto array : arrays) message.push_back((p.*array)[i]);
+    halo.in[k].resize(arrays.size() * halo.receive[k].size());
+    cost.bytes_sent += 8.0 * static_cast<double>(message.size());
   }
-  for (const auto& message : out) cost.bytes_sent += 8.0 * static_cast<double>(message.size());
-  const std::vector<std::vector<double>> in = world.exchange(halo.peers, out);
-  for (std::size_t k = 0; k < halo.peers.size(); ++k) {
+  world.exchange(halo.peers, halo.out, halo.in);
+  for (std::size_t k = 0; k < n; ++k) {
     std::size_t at = 0;
     for (const std::uint32_t i : halo.receive[k])
-      for (const auto array : arrays) (p.*array)[i] = in[k][at++];
+      for (const auto array : arrays) (p.*array)[i] = halo.in[k][at++];
   }
   cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -24,10 +24,11 @@
 namespace mpsolid {
 
 // The halo in local indices: per peer, what this rank sends and where what
-// it receives goes.
+// it receives goes, and the message buffers, reused from step to step.
 struct LocalHalo {
   std::vector<int> peers;
   std::vector<std::vector<std::uint32_t>> send, receive;
+  std::vector<std::vector<double>> out, in;
 };
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
 
@@ -38,7 +39,7 @@ struct HaloCost {
 };
 
 // Gives the ghosts their owners' values of the given arrays.
-void exchange_halo(const Communicator& world, const LocalHalo& halo, ParticleStore& p,
+void exchange_halo(const Communicator& world, LocalHalo& halo, ParticleStore& p,
                    std::initializer_list<std::vector<double> ParticleStore::*> arrays,
                    HaloCost& cost);
 
@@ -49,9 +50,8 @@ inline constexpr bool kDecomposable =
 // Advances this rank's local state by `steps` steps of dt (its team is the
 // calling thread's: one OpenMP thread per rank for now).
 template <class Model>
-void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
-                        const LocalHalo& halo, const Communicator& world, double dt,
-                        std::int64_t steps, HaloCost& cost) {
+void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
+                        const Communicator& world, double dt, std::int64_t steps, HaloCost& cost) {
   static_assert(kDecomposable<Model>, "only the paper models are decomposed so far");
   constexpr bool rot = Model::uses_rotation;
   ParticleStore& p = s.particles;

@@ -16,12 +16,82 @@ struct RankedStepper::Parts {
 };
 
 namespace {
-// Rigid bodies and loads by name: the local state keeps the owned ones.
+// The evolving fields of a rigid body and of a load, as doubles: what moves
+// between ranks besides the particles.
+constexpr std::size_t fields_of(const RigidBody*) {
+  return 6;
+}
+void read_fields(const RigidBody& b, double* out) {
+  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) *out++ = x;
+}
+void write_fields(RigidBody& b, const double* in) {
+  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
+}
+constexpr std::size_t fields_of(const StepLoad*) {
+  return 3;
+}
+void read_fields(const StepLoad& l, double* out) {
+  out[0] = l.active ? 1.0 : 0.0;
+  out[1] = l.cx_on;
+  out[2] = l.cy_on;
+}
+void write_fields(StepLoad& l, const double* in) {
+  l.active = in[0] != 0.0;
+  l.cx_on = in[1];
+  l.cy_on = in[2];
+}
+
+// The index of the item called `name` (rigid bodies and loads have unique names).
 template <class Item>
-Item* named(std::vector<Item>& items, const std::string& name) {
-  for (Item& item : items)
-    if (item.name == name) return &item;
-  return nullptr;
+std::size_t index_named(const std::vector<Item>& items, const std::string& name) {
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (items[k].name == name) return k;
+  throw std::logic_error("no item named " + name);
+}
+
+// Appends every item's fields to `out`, in order.
+template <class Item>
+void pack_items(const std::vector<Item>& items, std::vector<double>& out) {
+  for (const Item& item : items) {
+    out.resize(out.size() + fields_of(&item));
+    read_fields(item, out.data() + out.size() - fields_of(&item));
+  }
+}
+// Reads every item's fields from `in` at `at`, in order.
+template <class Item>
+void unpack_items(std::vector<Item>& items, const std::vector<double>& in, std::size_t& at) {
+  for (Item& item : items) {
+    write_fields(item, in.data() + at);
+    at += fields_of(&item);
+  }
+}
+
+// The local items' fields from the whole state's items of the same name.
+template <class Item>
+void copy_to_local(const std::vector<Item>& global, std::vector<Item>& local) {
+  std::vector<double> fields;
+  for (Item& item : local) {
+    fields.resize(fields_of(&item));
+    read_fields(global[index_named(global, item.name)], fields.data());
+    write_fields(item, fields.data());
+  }
+}
+
+// Each rank's local items back into every rank's whole state: (index,
+// fields...) records gathered in rank order.
+template <class Item>
+void gather_items(const std::vector<Item>& local, std::vector<Item>& global,
+                  const Communicator& world) {
+  const std::size_t width = 1 + fields_of(static_cast<const Item*>(nullptr));
+  std::vector<double> mine;
+  for (const Item& item : local) {
+    mine.push_back(static_cast<double>(index_named(global, item.name)));
+    mine.resize(mine.size() + width - 1);
+    read_fields(item, mine.data() + mine.size() - (width - 1));
+  }
+  const std::vector<double> all = world.all_gather(mine);
+  for (std::size_t at = 0; at + width <= all.size(); at += width)
+    write_fields(global[static_cast<std::size_t>(all[at])], all.data() + at + 1);
 }
 
 // Rank 0's evolving state, as one message: the state arrays, each rigid
@@ -32,9 +102,8 @@ std::vector<double> pack_state(const SolverState& s) {
     const std::vector<double>& v = s.particles.*a.member;
     out.insert(out.end(), v.begin(), v.end());
   }
-  for (const RigidBody& b : s.rigid_bodies)
-    out.insert(out.end(), {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
-  for (const StepLoad& l : s.loads) out.insert(out.end(), {l.active ? 1.0 : 0.0, l.cx_on, l.cy_on});
+  pack_items(s.rigid_bodies, out);
+  pack_items(s.loads, out);
   out.push_back(static_cast<double>(s.step));
   return out;
 }
@@ -43,13 +112,8 @@ void unpack_state(const std::vector<double>& in, SolverState& s) {
   std::size_t at = 0;
   for (const StateArray& a : kStateArrays)
     for (double& x : s.particles.*a.member) x = in[at++];
-  for (RigidBody& b : s.rigid_bodies)
-    for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = in[at++];
-  for (StepLoad& l : s.loads) {
-    l.active = in[at++] != 0.0;
-    l.cx_on = in[at++];
-    l.cy_on = in[at++];
-  }
+  unpack_items(s.rigid_bodies, in, at);
+  unpack_items(s.loads, in, at);
   s.step = static_cast<std::int64_t>(in[at]);
 }
 }  // namespace
@@ -85,14 +149,8 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   for (std::size_t k = 0; k < p.layout.size(); ++k)
     for (const StateArray& a : kStateArrays)
       (p.local.particles.*a.member)[k] = (global.particles.*a.member)[p.layout.global_of[k]];
-  for (RigidBody& b : p.local.rigid_bodies) {
-    const RigidBody& g = *named(global.rigid_bodies, b.name);
-    b.xg = g.xg, b.yg = g.yg, b.angle = g.angle, b.vx = g.vx, b.vy = g.vy, b.omega = g.omega;
-  }
-  for (StepLoad& l : p.local.loads) {
-    const StepLoad& g = *named(global.loads, l.name);
-    l.active = g.active, l.cx_on = g.cx_on, l.cy_on = g.cy_on;
-  }
+  copy_to_local(global.rigid_bodies, p.local.rigid_bodies);
+  copy_to_local(global.loads, p.local.loads);
   p.local.step = global.step;
   advance_rank_part(p, world, parts_->dt, steps);
   // Every rank's own particles, bodies and loads back into the whole state.
@@ -104,28 +162,8 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
                                              mine.begin() + static_cast<long>(owned.end)));
     global.particles.*a.member = all;
   }
-  std::vector<double> bodies;
-  for (const RigidBody& b : p.local.rigid_bodies)
-    for (std::size_t k = 0; k < global.rigid_bodies.size(); ++k)
-      if (global.rigid_bodies[k].name == b.name)
-        bodies.insert(bodies.end(),
-                      {static_cast<double>(k), b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
-  const std::vector<double> all_bodies = world.all_gather(bodies);
-  for (std::size_t at = 0; at + 7 <= all_bodies.size(); at += 7) {
-    RigidBody& g = global.rigid_bodies[static_cast<std::size_t>(all_bodies[at])];
-    g.xg = all_bodies[at + 1], g.yg = all_bodies[at + 2], g.angle = all_bodies[at + 3];
-    g.vx = all_bodies[at + 4], g.vy = all_bodies[at + 5], g.omega = all_bodies[at + 6];
-  }
-  std::vector<double> loads;
-  for (const StepLoad& l : p.local.loads)
-    for (std::size_t k = 0; k < global.loads.size(); ++k)
-      if (global.loads[k].name == l.name)
-        loads.insert(loads.end(), {static_cast<double>(k), l.active ? 1.0 : 0.0, l.cx_on, l.cy_on});
-  const std::vector<double> all_loads = world.all_gather(loads);
-  for (std::size_t at = 0; at + 4 <= all_loads.size(); at += 4) {
-    StepLoad& g = global.loads[static_cast<std::size_t>(all_loads[at])];
-    g.active = all_loads[at + 1] != 0.0, g.cx_on = all_loads[at + 2], g.cy_on = all_loads[at + 3];
-  }
+  gather_items(p.local.rigid_bodies, global.rigid_bodies, world);
+  gather_items(p.local.loads, global.loads, world);
   global.step = p.local.step;
   const std::vector<double> halo = world.all_gather({p.halo_cost.seconds, p.halo_cost.bytes_sent});
   rank_halo_.clear();

@@ -53,7 +53,9 @@ TEST(Ranks, HaloExchangeGivesEveryGhostTheSerialValue) {
     for (const std::uint32_t i : list) message.insert(message.end(), {x[i], y[i]});
     out.push_back(std::move(message));
   }
-  const std::vector<std::vector<double>> in = world.exchange(plan.peers, out);
+  std::vector<std::vector<double>> in;
+  for (const auto& list : plan.receive) in.emplace_back(2 * list.size());
+  world.exchange(plan.peers, out, in);
   for (std::size_t k = 0; k < plan.peers.size(); ++k) {
     ASSERT_EQ(in[k].size(), 2 * plan.receive[k].size()) << "from rank " << plan.peers[k];
     for (std::size_t m = 0; m < plan.receive[k].size(); ++m) {
