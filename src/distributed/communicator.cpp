@@ -12,6 +12,14 @@
 
 namespace mpsolid {
 
+namespace {
+void check_exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
+                    const std::vector<std::vector<double>>& in) {
+  if (peers.size() != out.size() || peers.size() != in.size())
+    throw std::invalid_argument("exchange: one message each way per peer");
+}
+}  // namespace
+
 bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
     if (std::getenv(name) != nullptr) return true;
@@ -47,10 +55,11 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& mine) co
 void Communicator::exchange(const std::vector<int>& peers,
                             const std::vector<std::vector<double>>& out,
                             std::vector<std::vector<double>>& in) const {
-  if (peers.size() != out.size() || peers.size() != in.size())
-    throw std::invalid_argument("exchange: one message each way per peer");
+  check_exchange(peers, out, in);
   const std::size_t n = peers.size();
-  std::vector<MPI_Request> requests(2 * n);
+  // Kept between calls: the halo exchanges allocate nothing per step.
+  thread_local std::vector<MPI_Request> requests;
+  requests.resize(2 * n);
   constexpr int kTag = 1;
   for (std::size_t k = 0; k < n; ++k) {
     MPI_Irecv(in[k].data(), static_cast<int>(in[k].size()), MPI_DOUBLE, peers[k], kTag,
@@ -130,8 +139,7 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& mine) co
 void Communicator::exchange(const std::vector<int>& peers,
                             const std::vector<std::vector<double>>& out,
                             std::vector<std::vector<double>>& in) const {
-  if (peers.size() != out.size() || peers.size() != in.size())
-    throw std::invalid_argument("exchange: one message each way per peer");
+  check_exchange(peers, out, in);
   for (const int peer : peers)
     if (peer != 0) throw std::invalid_argument("exchange: a one-rank run has no other rank");
   in = out;  // a rank exchanging with itself gets its own message back
