@@ -48,6 +48,7 @@
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/parallel.hpp"
+#include "src/core/particle_field.hpp"
 #include "src/core/particle_store.hpp"
 #include "src/core/types.hpp"
 
@@ -86,6 +87,12 @@ class CorrectedGradientModel {
   // Throws InputError if a particle's neighbourhood cannot define A_i^-1.
   CorrectedGradientModel(const ParticleStore& p, const BondTable& bonds,
                          const OptionValues& options)
+      : CorrectedGradientModel(p, bonds, options, p.all()) {}
+  // Only the particles in `whole_rows` have their whole bond rows (a rank's
+  // own particles, docs/mpi.md): the others' A^-1 is left zero (their F
+  // and stress come from their owners).
+  CorrectedGradientModel(const ParticleStore& p, const BondTable& bonds,
+                         const OptionValues& options, Range whole_rows)
       : volume_(bonds.geometry.volume), slots_(make_bond_slots(bonds)) {
     const HourglassSettings hourglass = hourglass_settings(options);
     consistent_hourglass_ = hourglass.consistent && hourglass.alpha > 0;
@@ -113,6 +120,7 @@ class CorrectedGradientModel {
         wl_of[b] = wl;
         penalty[b] = hourglass.alpha * e_ij * volume_ * (2.0 / n0) * wl;
       }
+      if (i < whole_rows.begin || i >= whole_rows.end) continue;
       const double d = tensor2::det(a);
       // An interior particle has A = (n0 / d) I; neighbours on one line give det A = 0.
       if (!(std::abs(d) > 1e-8 * (a[0] * a[0] + a[3] * a[3])))
@@ -140,9 +148,19 @@ class CorrectedGradientModel {
 
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
+    compute_deformation_gradient(p, bonds, range);
+    compute_hourglass_stress(p, bonds, range);
+  }
+
+  // compute_strain in the two parts a decomposed step exchanges between
+  // (docs/mpi.md): pass 1, then (once every particle's F is current) the
+  // bonds' gaps and pass 1b.
+  void compute_deformation_gradient(ParticleStore& p, const BondTable& bonds, Range range) {
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_deformation_gradient(p, bonds, {b, e});
     });
+  }
+  void compute_hourglass_stress(const ParticleStore& p, const BondTable& bonds, Range range) {
     // Every bond's gap and Q terms (all owners, whatever `range` is).
     parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
       compute_gap_slots(p, {b, e});
@@ -152,6 +170,11 @@ class CorrectedGradientModel {
         gather_hourglass_stress(bonds, {b, e});
       });
   }
+
+  // The per-particle fields a rank's ghosts get from their owners: F (after
+  // pass 1) and (S + Q) A^-1 (after pass 1b). A ghost's A^-1 is never read.
+  ParticleField deformation_gradient_field() { return {def_grad_.data(), 4, 4, 1}; }
+  ParticleField stress_field() { return {stress_a_.data(), 4, 1, particle_count()}; }
 
   // Pass 2: the force; no torque (needs pass 1 at the current state).
   void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {

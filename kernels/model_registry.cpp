@@ -21,13 +21,13 @@ std::vector<ModelInfo> catalog_of(std::index_sequence<K...>) {
 
 template <std::size_t K = 0>
 AnyModel make_by_name(const std::string& name, const ParticleStore& p, const BondTable& bonds,
-                      const OptionValues& options) {
+                      const OptionValues& options, Range whole_rows) {
   if constexpr (K == std::variant_size_v<AnyModel>) {
     throw InputError("unknown model '" + name + "'");
   } else {
     using Model = std::variant_alternative_t<K, AnyModel>;
-    if (name == Model::name) return AnyModel(std::in_place_index<K>, p, bonds, options);
-    return make_by_name<K + 1>(name, p, bonds, options);
+    if (name == Model::name) return AnyModel(std::in_place_index<K>, p, bonds, options, whole_rows);
+    return make_by_name<K + 1>(name, p, bonds, options, whole_rows);
   }
 }
 }  // namespace
@@ -52,7 +52,12 @@ const ModelInfo& model_info(const std::string& name) {
 
 AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
                     const OptionValues& options) {
-  return make_by_name(name, p, bonds, options);
+  return make_by_name(name, p, bonds, options, p.all());
+}
+
+AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
+                    const OptionValues& options, Range whole_rows) {
+  return make_by_name(name, p, bonds, options, whole_rows);
 }
 
 }  // namespace mpsolid

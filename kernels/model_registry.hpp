@@ -24,8 +24,12 @@ std::vector<std::string> model_names();
 const ModelInfo& model_info(const std::string& name);
 
 // The model called `name`, its coefficients made for `bonds`; `options` are
-// its validated section (CaseSpec::model_options).
+// its validated section (CaseSpec::model_options). Particles outside
+// `whole_rows` hold only part of their bond row (a rank's ghosts,
+// docs/mpi.md): what the model derives from whole rows is left for the halo.
 AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
                     const OptionValues& options);
+AnyModel make_model(const std::string& name, const ParticleStore& p, const BondTable& bonds,
+                    const OptionValues& options, Range whole_rows);
 
 }  // namespace mpsolid

@@ -54,6 +54,10 @@ class PaperModelT {
   PaperModelT() = default;  // no bonds: only a placeholder to assign a model to
   // The per-bond coefficients (MODEL.md sections 2.3-2.4), mu_ij the
   // arithmetic mean of the two ends' mu; per entry, and per slot (bond_slots.hpp).
+  // Its coefficients are per bond: a rank's partial ghost rows need nothing
+  // else (docs/mpi.md), so `whole_rows` changes nothing.
+  PaperModelT(const ParticleStore& p, const BondTable& bonds, const OptionValues& options, Range)
+      : PaperModelT(p, bonds, options) {}
   PaperModelT(const ParticleStore& p, const BondTable& bonds, const OptionValues&)
       : volume_(bonds.geometry.volume), slots_(make_bond_slots(bonds)) {
     const EntryCoefficients c = entry_coefficients(p, bonds);

@@ -29,7 +29,7 @@ VersionFacts version_facts() {
 std::string version_text() {
   const VersionFacts f = version_facts();
   const std::string mpi = f.mpi == "none" ? std::string("MPI: not in this build")
-                                          : "MPI: " + f.mpi + " (paper models over ranks)";
+                                          : "MPI: " + f.mpi + " (every model over ranks)";
   return fmt::format("mpsolid {} (git {})\n  {}, {} build, flags {}\n  {}; {}", f.version,
                      f.git_commit, f.compiler, f.build_type, f.cxx_flags, f.openmp, mpi);
 }

@@ -20,10 +20,11 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
   return halo;
 }
 
-void exchange_halo(const Communicator& world, LocalHalo& halo, ParticleStore& p,
-                   std::initializer_list<std::vector<double> ParticleStore::*> arrays,
-                   HaloCost& cost) {
+void exchange_halo(const Communicator& world, LocalHalo& halo,
+                   std::initializer_list<ParticleField> fields, HaloCost& cost) {
   const auto start = std::chrono::steady_clock::now();
+  std::size_t width = 0;
+  for (const ParticleField& f : fields) width += f.width;
   const std::size_t n = halo.peers.size();
   halo.out.resize(n);
   halo.in.resize(n);
@@ -31,15 +32,17 @@ void exchange_halo(const Communicator& world, LocalHalo& halo, ParticleStore& p,
     std::vector<double>& message = halo.out[k];
     message.clear();
     for (const std::uint32_t i : halo.send[k])
-      for (const auto array : arrays) message.push_back((p.*array)[i]);
-    halo.in[k].resize(arrays.size() * halo.receive[k].size());
+      for (const ParticleField& f : fields)
+        for (std::size_t c = 0; c < f.width; ++c) message.push_back(f.at(i, c));
+    halo.in[k].resize(width * halo.receive[k].size());
     cost.bytes_sent += 8.0 * static_cast<double>(message.size());
   }
   world.exchange(halo.peers, halo.out, halo.in);
   for (std::size_t k = 0; k < n; ++k) {
-    std::size_t at = 0;
+    const double* in = halo.in[k].data();
     for (const std::uint32_t i : halo.receive[k])
-      for (const auto array : arrays) (p.*array)[i] = halo.in[k][at++];
+      for (const ParticleField& f : fields)
+        for (std::size_t c = 0; c < f.width; ++c) f.at(i, c) = *in++;
   }
   cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -50,17 +53,14 @@ RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
   std::vector<Range> whole;
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
   for (const StepLoad& l : global.loads) whole.push_back(l.range);
-  // The models kDecomposable admits, by name: checked before a model is made
-  // on the local state (a model may refuse a ghost's partial row).
-  if (spec.model != PaperModel::name && spec.model != PaperConservativeModel::name)
-    throw std::invalid_argument("the " + spec.model + " model");
   const Decomposition d = decompose(global.bonds, world.size(), whole);
   const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
   RankPart part;
   part.layout = local_layout(d, plan, world.rank());
   part.halo = local_halo(plan, part.layout);
   part.local = local_solver_state(global, part.layout);
-  part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options);
+  part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
+                          part.layout.owned);
   return part;
 }
 

@@ -1,14 +1,15 @@
 #pragma once
-// The decomposed step on one rank (docs/mpi.md), for the paper models: the
+// The decomposed step on one rank (docs/mpi.md), for every model: the
 // rank steps its own particles on its local state, and before each pass
 // that reads neighbours its ghosts get their owners' values (the halos).
 // Every owned particle then computes exactly what the serial step computes,
 // in the same order: the same bits at any rank count.
 //
-// Halos per step: positions, rotations and half angles before the strain
-// pass; strain and pressure before the force pass. The paper models' force
-// pass reads nothing else of a neighbour (the corrected-gradient models'
-// stress terms are not exchanged yet: refused).
+// Halos per step, the paper models: positions, rotations and half angles
+// before the strain pass; strain and pressure before the force pass. The
+// corrected-gradient models: positions; F after pass 1 (a bond's gap reads
+// both ends'); (S + Q) A^-1 before the force pass. (A ghost's A^-1, which
+// its partial local row cannot give, is never needed.)
 #include <cstdint>
 #include <initializer_list>
 #include <type_traits>
@@ -17,6 +18,7 @@
 #include "kernels/model_registry.hpp"
 #include "kernels/paper_model.hpp"
 #include "src/case/case_spec.hpp"
+#include "src/core/particle_field.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/distributed/local_state.hpp"
 #include "src/solver/step.hpp"
@@ -38,21 +40,49 @@ struct HaloCost {
   double bytes_sent = 0;
 };
 
-// Gives the ghosts their owners' values of the given arrays.
-void exchange_halo(const Communicator& world, LocalHalo& halo, ParticleStore& p,
-                   std::initializer_list<std::vector<double> ParticleStore::*> arrays,
-                   HaloCost& cost);
+// Gives the ghosts their owners' values of the given fields.
+void exchange_halo(const Communicator& world, LocalHalo& halo,
+                   std::initializer_list<ParticleField> fields, HaloCost& cost);
+
+// The corrected-gradient models: their strain pass is two gathers with a
+// halo between (a bond's gap reads both ends' F), and their force pass
+// reads the partners' (S + Q) A^-1.
+template <class Model>
+concept HasStressHalo = requires(Model m, ParticleStore& p, const BondTable& b, Range r) {
+  m.compute_deformation_gradient(p, b, r);
+  m.compute_hourglass_stress(p, b, r);
+  m.deformation_gradient_field();
+  m.stress_field();
+};
 
 template <class Model>
 inline constexpr bool kDecomposable =
-    std::is_same_v<Model, PaperModel> || std::is_same_v<Model, PaperConservativeModel>;
+    std::is_same_v<Model, PaperModel> || std::is_same_v<Model, PaperConservativeModel> ||
+    HasStressHalo<Model>;
+
+// The strain pass of the owned particles, with the halos that leave every
+// ghost's force-pass inputs at their owners' values.
+template <class Model>
+void decomposed_strain(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
+                       const Communicator& world, HaloCost& cost) {
+  ParticleStore& p = s.particles;
+  if constexpr (HasStressHalo<Model>) {
+    model.compute_deformation_gradient(p, s.bonds, layout.owned);
+    exchange_halo(world, halo, {model.deformation_gradient_field()}, cost);
+    model.compute_hourglass_stress(p, s.bonds, layout.owned);
+    exchange_halo(world, halo, {model.stress_field()}, cost);
+  } else {
+    model.compute_strain(p, s.bonds, layout.owned);
+    exchange_halo(world, halo, {field_of(p.strain), field_of(p.pressure)}, cost);
+  }
+}
 
 // Advances this rank's local state by `steps` steps of dt (its team is the
 // calling thread's: one OpenMP thread per rank for now).
 template <class Model>
 void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
                         const Communicator& world, double dt, std::int64_t steps, HaloCost& cost) {
-  static_assert(kDecomposable<Model>, "only the paper models are decomposed so far");
+  static_assert(kDecomposable<Model>, "a model the decomposed step does not cover");
   constexpr bool rot = Model::uses_rotation;
   ParticleStore& p = s.particles;
   const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),
@@ -60,15 +90,17 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
   if constexpr (rot) compute_half_angles(p, moving_owned);
   BodyKicks kicks(s.rigid_bodies.size());
   for (std::int64_t k = 0; k < steps; ++k, ++s.step) {
-    exchange_halo(world, halo, p,
-                  {&ParticleStore::x, &ParticleStore::y, &ParticleStore::theta,
-                   &ParticleStore::half_cos, &ParticleStore::half_sin},
-                  cost);
+    if constexpr (rot)
+      exchange_halo(world, halo,
+                    {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
+                     field_of(p.half_sin)},
+                    cost);
+    else
+      exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
     if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
-    model.compute_strain(p, s.bonds, layout.owned);
-    exchange_halo(world, halo, p, {&ParticleStore::strain, &ParticleStore::pressure}, cost);
-    // The paper models' force pass reads no position: a block's forces and
-    // its integration follow each other, as in the team step.
+    decomposed_strain(model, s, layout, halo, world, cost);
+    // The force pass reads no position: a block's forces and its
+    // integration follow each other, as in the team step.
     if (moving_owned.begin < moving_owned.end) {
       model.compute_forces_block(p, s.bonds, moving_owned);
       integrate_block<rot>(s, dt, moving_owned, kicks);
@@ -88,7 +120,7 @@ struct RankPart {
 
 // This rank's part of the set-up state `global`, cut with the rigid and
 // loaded bodies kept whole. Throws std::invalid_argument for a case the
-// decomposed step does not cover (a model other than the paper models).
+// decomposed step does not cover.
 RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const Communicator& world);
 
 // Advances the part by `steps` decomposed steps of dt.

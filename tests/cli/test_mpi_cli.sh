@@ -5,8 +5,8 @@
 #    (compare_runs.py);
 #  - a checkpoint written at 2 ranks resumes at 1 and at 3 ranks to the
 #    same bits;
-#  - a case the decomposed step does not cover yet (finite_strain) is
-#    refused with exit 2, one message (rank 0's) and nothing written;
+#  - the finite-strain model at 2 ranks gives the serial bits too;
+#  - a bad case gets exit 2, one message (rank 0's) and nothing written;
 #  - run.json records the ranks and each rank's halo time and bytes.
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
@@ -79,14 +79,28 @@ cp -r "$TMP/half" "$TMP/half3"
 mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "2 ranks, resumed at 3" "$TMP/half3" || fail "resume at 3 ranks: exit $rc"
 
-mpi 2 refused run cases/shock_rod_55kN_short_wall.toml --set time.end=1e-6 --out "$TMP/refused"
-[[ $rc -eq 2 ]] && ok "finite_strain at 2 ranks: exit 2" || fail "finite_strain at 2 ranks: exit $rc"
-messages=$(grep -c "finite_strain model over 2 MPI ranks is not supported yet.*docs/mpi.md" \
-  "$TMP/refused.err")
-[[ $messages -eq 1 ]] && ok "finite_strain at 2 ranks: one message" ||
-  { fail "finite_strain at 2 ranks: $messages messages:"; sed 's/^/    /' "$TMP/refused.err"; }
-[[ ! -e "$TMP/refused" ]] && ok "finite_strain at 2 ranks: nothing written" ||
-  fail "finite_strain at 2 ranks: $TMP/refused was created"
+# The finite-strain model (three halos a step) at 2 ranks: the 55.9 kN rod.
+FS_SETS=(--set l0=0.002 --set time.end=2e-4 --set output.frame_interval=5e-5)
+"$BIN" run cases/shock_rod_55kN_short_wall.toml "${FS_SETS[@]}" --out "$TMP/fs_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the finite_strain serial run failed"
+mpi 2 fs2 run cases/shock_rod_55kN_short_wall.toml "${FS_SETS[@]}" --out "$TMP/fs2"
+if [[ $rc -eq 0 ]] && /usr/bin/python3 tests/tools/compare_runs.py "$TMP/fs_serial" "$TMP/fs2" \
+  >"$TMP/fs2.compare" 2>&1; then
+  ok "finite_strain at 2 ranks: the serial run's bits ($(tail -n 1 "$TMP/fs2.compare"))"
+else
+  fail "finite_strain at 2 ranks (exit $rc) differs from the serial run:"
+  sed 's/^/    /' "$TMP/fs2.compare" "$TMP/fs2.err" | head -n 8
+fi
+
+# A bad case: exit 2, one message (rank 0's) naming the key and its range,
+# nothing written, and no rank left waiting.
+mpi 2 bad run "$CASE" --set time.end=1e-6 --set contact.distance=3 --out "$TMP/bad"
+[[ $rc -eq 2 ]] && ok "a bad case at 2 ranks: exit 2" || fail "a bad case at 2 ranks: exit $rc"
+messages=$(grep -c "contact.distance.*0.5" "$TMP/bad.err")
+[[ $messages -eq 1 ]] && ok "a bad case at 2 ranks: one message" ||
+  { fail "a bad case at 2 ranks: $messages messages:"; sed 's/^/    /' "$TMP/bad.err"; }
+[[ ! -e "$TMP/bad" ]] && ok "a bad case at 2 ranks: nothing written" ||
+  fail "a bad case at 2 ranks: $TMP/bad was created"
 
 if [[ $failures -gt 0 ]]; then
   echo "test_mpi_cli: $failures check(s) FAILED"

@@ -94,12 +94,12 @@ TEST(Ranks, ChunkSumsGatheredInRankOrderGiveTheSerialBits) {
 }
 
 // The decomposed step: every rank steps its own slab of the rod (and the
-// plate or the wall, where it owns them), exchanging the two halos each
+// plate or the wall, where it owns them), exchanging its halos each
 // step; the owned states gathered in rank order are the serial run's bits.
-TEST(Ranks, DecomposedPaperStepGivesTheSerialBits) {
+TEST(Ranks, DecomposedStepGivesTheSerialBits) {
   const Communicator& world = Communicator::world();
   set_thread_count(1);
-  for (const std::string model : {"paper", "paper_conservative"}) {
+  for (const std::string model : model_names()) {
     SCOPED_TRACE(model);
     const CaseSpec spec = testing::rod_case({"l0=0.001", "model=" + model});
     constexpr std::int64_t kSteps = 3000;

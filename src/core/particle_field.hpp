@@ -1,0 +1,28 @@
+#pragma once
+// A per-particle field somewhere in memory, described for code that copies
+// particles' values without knowing who owns the array (the halo exchanges,
+// docs/mpi.md): `width` values per particle, value c of particle i at
+// data[i * particle_stride + c * component_stride]. A ParticleStore array is
+// {data, 1, 1, 0}; rows of four per particle {data, 4, 4, 1}; four component
+// arrays of n values {data, 4, 1, n}.
+#include <cstddef>
+#include <vector>
+
+namespace mpsolid {
+
+struct ParticleField {
+  double* data = nullptr;
+  std::size_t width = 1;
+  std::size_t particle_stride = 1;
+  std::size_t component_stride = 0;
+
+  double& at(std::size_t i, std::size_t c) const {
+    return data[i * particle_stride + c * component_stride];
+  }
+};
+
+inline ParticleField field_of(std::vector<double>& values) {
+  return {values.data(), 1, 1, 0};
+}
+
+}  // namespace mpsolid
