@@ -70,6 +70,12 @@ void Communicator::exchange(const std::vector<int>& peers,
   MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
 }
 
+std::int64_t Communicator::max(std::int64_t mine) const {
+  std::int64_t all = mine;
+  if (size_ > 1) MPI_Allreduce(&mine, &all, 1, MPI_INT64_T, MPI_MAX, MPI_COMM_WORLD);
+  return all;
+}
+
 void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
 }
@@ -145,6 +151,9 @@ void Communicator::exchange(const std::vector<int>& peers,
   in = out;  // a rank exchanging with itself gets its own message back
 }
 
+std::int64_t Communicator::max(std::int64_t mine) const {
+  return mine;
+}
 void Communicator::barrier() const {}
 void Communicator::broadcast(std::vector<double>&) const {}
 void Communicator::broadcast(std::int64_t&) const {}

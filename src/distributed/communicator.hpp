@@ -28,6 +28,8 @@ class Communicator {
   // this rank in its own call.
   void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
                 std::vector<std::vector<double>>& in) const;
+  // The largest of every rank's value, on every rank.
+  std::int64_t max(std::int64_t mine) const;
   void barrier() const;
   // Rank 0's values, on every rank (`values` is resized on the others).
   void broadcast(std::vector<double>& values) const;

@@ -1,6 +1,7 @@
 #include "src/distributed/local_state.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -13,17 +14,22 @@ std::size_t LocalLayout::local_of(std::uint32_t global) const {
   return static_cast<std::size_t>(at - global_of.begin());
 }
 
-LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank) {
+LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
+                         const std::vector<std::uint32_t>& also) {
   LocalLayout layout;
   const Range mine = d.owned(rank);
   layout.owned_global = mine;
-  const auto below = std::lower_bound(halo.ghosts.begin(), halo.ghosts.end(), mine.begin);
-  layout.global_of.assign(halo.ghosts.begin(), below);
+  std::vector<std::uint32_t> others;  // not owned: ghosts and `also`
+  std::set_union(halo.ghosts.begin(), halo.ghosts.end(), also.begin(), also.end(),
+                 std::back_inserter(others));
+  std::erase_if(others, [&](std::uint32_t g) { return g >= mine.begin && g < mine.end; });
+  const auto below = std::lower_bound(others.begin(), others.end(), mine.begin);
+  layout.global_of.assign(others.begin(), below);
   layout.owned.begin = layout.global_of.size();
   for (std::size_t i = mine.begin; i < mine.end; ++i)
     layout.global_of.push_back(static_cast<std::uint32_t>(i));
   layout.owned.end = layout.global_of.size();
-  layout.global_of.insert(layout.global_of.end(), below, halo.ghosts.end());
+  layout.global_of.insert(layout.global_of.end(), below, others.end());
   return layout;
 }
 
@@ -113,8 +119,6 @@ std::vector<Item> owned_items(const std::vector<Item>& items, const LocalLayout&
 }  // namespace
 
 SolverState local_solver_state(const SolverState& global, const LocalLayout& layout) {
-  if (global.contact.enabled())
-    throw std::invalid_argument("contact is not decomposed over ranks yet (docs/mpi.md)");
   SolverState s;
   s.particles = local_particles(global.particles, layout);
   s.bonds = local_bonds(global.bonds, s.particles, layout);
@@ -126,6 +130,19 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
     const Range mine = layout.owned_global;
     const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};
     if (part.begin < part.end) s.holds.push_back({to_local(part, layout), hold.x, hold.y});
+  }
+  // Every candidate of the run (the layout must hold them all); the list is
+  // the decomposed step's to build.
+  const ContactState& contact = global.contact;
+  if (contact.enabled()) {
+    ContactState& c = s.contact;
+    c.parameters = contact.parameters;
+    for (const std::uint32_t g : contact.candidates)
+      c.candidates.push_back(static_cast<std::uint32_t>(layout.local_of(g)));
+    c.group = contact.group;
+    c.first_moving = contact.first_moving;
+    c.force_x.assign(c.size(), 0.0);
+    c.force_y.assign(c.size(), 0.0);
   }
   return s;
 }

@@ -27,8 +27,11 @@ struct LocalLayout {
   std::size_t local_of(std::uint32_t global) const;
 };
 
-// Owned particles and ghosts, merged in global order.
-LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank);
+// Owned particles and ghosts, merged in global order, with the particles of
+// `also` (global storage indices, ascending: every contact candidate of the
+// run) that are neither.
+LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
+                         const std::vector<std::uint32_t>& also = {});
 
 // The layout's particles, every array copied, the kind ranges recomputed
 // (storage is grouped by kind, and the global order is kept).
@@ -44,7 +47,8 @@ BondTable local_bonds(const BondTable& global, const ParticleStore& local,
 // loads and holds of the owned particles in local indices. A rigid body or
 // a loaded body must be owned by one rank (its projection and its load's
 // share sum over all of it); one split between ranks is refused
-// (std::invalid_argument). Contact is not decomposed yet (refused too).
+// (std::invalid_argument). Contact: every candidate of the run, in local
+// indices (the layout must hold them all), with no list yet.
 SolverState local_solver_state(const SolverState& global, const LocalLayout& layout);
 
 }  // namespace mpsolid

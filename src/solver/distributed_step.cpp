@@ -6,47 +6,6 @@
 
 namespace mpsolid {
 
-LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
-  LocalHalo halo;
-  halo.peers = plan.peers;
-  const auto to_local = [&](const std::vector<std::uint32_t>& global) {
-    std::vector<std::uint32_t> local;
-    for (const std::uint32_t g : global)
-      local.push_back(static_cast<std::uint32_t>(layout.local_of(g)));
-    return local;
-  };
-  for (const auto& list : plan.send) halo.send.push_back(to_local(list));
-  for (const auto& list : plan.receive) halo.receive.push_back(to_local(list));
-  return halo;
-}
-
-void exchange_halo(const Communicator& world, LocalHalo& halo,
-                   std::initializer_list<ParticleField> fields, HaloCost& cost) {
-  const auto start = std::chrono::steady_clock::now();
-  std::size_t width = 0;
-  for (const ParticleField& f : fields) width += f.width;
-  const std::size_t n = halo.peers.size();
-  halo.out.resize(n);
-  halo.in.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    std::vector<double>& message = halo.out[k];
-    message.clear();
-    for (const std::uint32_t i : halo.send[k])
-      for (const ParticleField& f : fields)
-        for (std::size_t c = 0; c < f.width; ++c) message.push_back(f.at(i, c));
-    halo.in[k].resize(width * halo.receive[k].size());
-    cost.bytes_sent += 8.0 * static_cast<double>(message.size());
-  }
-  world.exchange(halo.peers, halo.out, halo.in);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double* in = halo.in[k].data();
-    for (const std::uint32_t i : halo.receive[k])
-      for (const ParticleField& f : fields)
-        for (std::size_t c = 0; c < f.width; ++c) f.at(i, c) = *in++;
-  }
-  cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
                         const Communicator& world) {
   // Rigid and loaded bodies stay on one rank (their sums run over all of them).
@@ -56,19 +15,22 @@ RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
   const Decomposition d = decompose(global.bonds, world.size(), whole);
   const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
   RankPart part;
-  part.layout = local_layout(d, plan, world.rank());
+  part.layout = local_layout(d, plan, world.rank(), global.contact.candidates);
   part.halo = local_halo(plan, part.layout);
   part.local = local_solver_state(global, part.layout);
+  part.contact = make_rank_contact(part.local, part.layout, d, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
   return part;
 }
 
 void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps) {
+  if (part.local.contact.enabled())
+    rebuild_rank_contact(part.contact, part.local, part.layout, world, part.halo_cost);
   std::visit(
       [&](auto& m) {
         if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-          advance_decomposed(m, part.local, part.layout, part.halo, world, dt, steps,
+          advance_decomposed(m, part.local, part.layout, part.halo, part.contact, world, dt, steps,
                              part.halo_cost);
       },
       part.model);

@@ -9,7 +9,9 @@
 // before the strain pass; strain and pressure before the force pass. The
 // corrected-gradient models: positions; F after pass 1 (a bond's gap reads
 // both ends'); (S + Q) A^-1 before the force pass. (A ghost's A^-1, which
-// its partial local row cannot give, is never needed.)
+// its partial local row cannot give, is never needed.) With contact, the
+// contact pass (src/solver/distributed_contact.hpp) follows the positions'
+// halo, as it comes first in the serial step.
 #include <cstdint>
 #include <initializer_list>
 #include <type_traits>
@@ -20,29 +22,12 @@
 #include "src/case/case_spec.hpp"
 #include "src/core/particle_field.hpp"
 #include "src/distributed/communicator.hpp"
+#include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/solver/distributed_contact.hpp"
 #include "src/solver/step.hpp"
 
 namespace mpsolid {
-
-// The halo in local indices: per peer, what this rank sends and where what
-// it receives goes, and the message buffers, reused from step to step.
-struct LocalHalo {
-  std::vector<int> peers;
-  std::vector<std::vector<std::uint32_t>> send, receive;
-  std::vector<std::vector<double>> out, in;
-};
-LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
-
-// What the halos cost this rank: wall time in exchanges, bytes sent.
-struct HaloCost {
-  double seconds = 0;
-  double bytes_sent = 0;
-};
-
-// Gives the ghosts their owners' values of the given fields.
-void exchange_halo(const Communicator& world, LocalHalo& halo,
-                   std::initializer_list<ParticleField> fields, HaloCost& cost);
 
 // The corrected-gradient models: their strain pass is two gathers with a
 // halo between (a bond's gap reads both ends' F), and their force pass
@@ -78,10 +63,12 @@ void decomposed_strain(Model& model, SolverState& s, const LocalLayout& layout, 
 }
 
 // Advances this rank's local state by `steps` steps of dt (its team is the
-// calling thread's: one OpenMP thread per rank for now).
+// calling thread's: one OpenMP thread per rank for now). With contact, the
+// list must have been built on every rank at the current positions.
 template <class Model>
 void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
-                        const Communicator& world, double dt, std::int64_t steps, HaloCost& cost) {
+                        RankContact& contact, const Communicator& world, double dt,
+                        std::int64_t steps, HaloCost& cost) {
   static_assert(kDecomposable<Model>, "a model the decomposed step does not cover");
   constexpr bool rot = Model::uses_rotation;
   ParticleStore& p = s.particles;
@@ -97,6 +84,7 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
                     cost);
     else
       exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
+    if (s.contact.enabled()) rank_contact_pass(contact, s, layout, world, s.step, cost);
     if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
     decomposed_strain(model, s, layout, halo, world, cost);
     // The force pass reads no position: a block's forces and its
@@ -114,6 +102,7 @@ struct RankPart {
   LocalLayout layout;
   LocalHalo halo;
   SolverState local;
+  RankContact contact;
   AnyModel model;
   HaloCost halo_cost;  // summed over every step so far
 };
@@ -123,7 +112,9 @@ struct RankPart {
 // decomposed step does not cover.
 RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const Communicator& world);
 
-// Advances the part by `steps` decomposed steps of dt.
+// Advances the part by `steps` decomposed steps of dt; every particle of the
+// local state must be at its current value (with contact, the list is built
+// first).
 void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps);
 
 }  // namespace mpsolid

@@ -94,6 +94,21 @@ void gather_items(const std::vector<Item>& local, std::vector<Item>& global,
     write_fields(global[static_cast<std::size_t>(all[at])], all.data() + at + 1);
 }
 
+// What the ranks' contact passes marked, into the whole state's contact:
+// the first step any rank found a pair too close (the interpenetration
+// check reports it), and the rebuilds (every rank rebuilds together).
+void gather_contact_marks(const ContactState& local, std::int64_t rebuilds_before,
+                          ContactState& global, const Communicator& world) {
+  const std::vector<double> marks =
+      world.all_gather({static_cast<double>(local.too_close.step.load())});
+  for (const double m : marks) {
+    const auto step = static_cast<std::int64_t>(m);
+    const std::int64_t first = global.too_close.step.load();
+    if (step >= 0 && (first < 0 || step < first)) global.too_close.step.store(step);
+  }
+  global.rebuilds += local.rebuilds - rebuilds_before;
+}
+
 // Rank 0's evolving state, as one message: the state arrays, each rigid
 // body's pose and velocity, each load's switch-on, the step.
 std::vector<double> pack_state(const SolverState& s) {
@@ -127,7 +142,6 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
         "mpirun, or with -np 1) and use --threads (docs/mpi.md)",
         spec.source, why, world.size(), spec.name));
   };
-  if (spec.contact.enabled) refuse("contact");
   try {
     parts_->part = make_rank_part(spec, global, world);
   } catch (const std::invalid_argument& e) {
@@ -152,6 +166,7 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   copy_to_local(global.rigid_bodies, p.local.rigid_bodies);
   copy_to_local(global.loads, p.local.loads);
   p.local.step = global.step;
+  const std::int64_t rebuilds = p.local.contact.rebuilds;
   advance_rank_part(p, world, parts_->dt, steps);
   // Every rank's own particles, bodies and loads back into the whole state.
   const Range owned = p.layout.owned;
@@ -165,6 +180,8 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   gather_items(p.local.rigid_bodies, global.rigid_bodies, world);
   gather_items(p.local.loads, global.loads, world);
   global.step = p.local.step;
+  if (global.contact.enabled())
+    gather_contact_marks(p.local.contact, rebuilds, global.contact, world);
   const std::vector<double> halo = world.all_gather({p.halo_cost.seconds, p.halo_cost.bytes_sent});
   rank_halo_.clear();
   for (std::size_t r = 0; r + 1 < halo.size(); r += 2)

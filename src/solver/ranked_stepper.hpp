@@ -8,9 +8,8 @@
 // run: the same bits at any rank count.
 //
 // First version: every rank keeps the whole state (memory per rank does not
-// shrink yet), and every model is decomposed without contact, each rigid or
-// loaded body owned by one rank; anything else is refused before set-up
-// with exit 2 on every rank.
+// shrink yet). Every model and contact are decomposed, each rigid or loaded
+// body owned by one rank.
 #include <cstdint>
 #include <memory>
 #include <string>

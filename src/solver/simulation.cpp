@@ -19,10 +19,13 @@ namespace mpsolid {
 Simulation::Simulation(const CaseSpec& spec) {
   const Communicator& world = Communicator::world();
   const bool ranked = ranked_runs();
-  if (ranked && world.rank() == 0) followers::send_case(spec.resolved_toml);
   set_flush_subnormals(spec.flush_subnormals);
   TimeStepChoice choice = fix_time_step(spec, timers_);
   spec_ = std::move(choice.spec);
+  // The case with the step chosen: the followers step with rank 0's step
+  // (the resolved case of an automatic step names it, and a defaulted
+  // history interval it fixed).
+  if (ranked && world.rank() == 0) followers::send_case(spec_.resolved_toml);
   stable_step_ = choice.estimate;
   state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
   model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);

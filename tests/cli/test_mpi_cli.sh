@@ -5,6 +5,10 @@
 #    (compare_runs.py);
 #  - a checkpoint written at 2 ranks resumes at 1 and at 3 ranks to the
 #    same bits;
+#  - contact (the colliding blocks) at 2 and 3 ranks, and a 2-rank
+#    checkpoint written mid-collision resumed at 1 and 3 ranks, give the
+#    serial bits;
+#  - a too soft contact stops a 2-rank run as it stops one rank (exit 3);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
 #  - run.json records the ranks and each rank's halo time and bytes.
@@ -35,8 +39,8 @@ mpi() {  # mpi RANKS LABEL ARGS...: mpsolid ARGS under the launcher; exit code i
     </dev/null >"$TMP/$label.out" 2>"$TMP/$label.err"
   rc=$?
 }
-same() {  # same LABEL DIR: DIR has the serial run's bits
-  if /usr/bin/python3 tests/tools/compare_runs.py "$TMP/serial" "$2" >"$TMP/$1.compare" 2>&1; then
+same() {  # same LABEL DIR [SERIAL]: DIR has the serial run's bits (SERIAL: $TMP/serial)
+  if /usr/bin/python3 tests/tools/compare_runs.py "${3:-$TMP/serial}" "$2" >"$TMP/$1.compare" 2>&1; then
     ok "$1: the serial run's bits ($(tail -n 1 "$TMP/$1.compare"))"
   else
     fail "$1 differs from the serial run:"
@@ -78,6 +82,42 @@ cp -r "$TMP/half" "$TMP/half3"
   same "2 ranks, resumed at 1" "$TMP/half" || fail "resume at 1 rank failed: $(cat "$TMP/resume1.err")"
 mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "2 ranks, resumed at 3" "$TMP/half3" || fail "resume at 3 ranks: exit $rc"
+
+# Contact: the colliding blocks (finite_strain) at l0 = 0.5 mm (seven
+# chunks: every rank owns some) through the collision at 2 and 3 ranks, and
+# a 2-rank checkpoint written mid-collision resumed at 1 and at 3 ranks.
+C_CASE=cases/colliding_blocks.toml
+C_SETS=(--set l0=0.0005 --set output.frame_interval=3e-4 --set output.checkpoint_interval=3e-4
+  --set output.history_interval=1e-5)
+"$BIN" run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 --out "$TMP/c_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the contact serial run failed"
+for ranks in 2 3; do
+  mpi "$ranks" "contact$ranks" run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 \
+    --out "$TMP/contact$ranks"
+  [[ $rc -eq 0 ]] && same "contact at $ranks ranks" "$TMP/contact$ranks" "$TMP/c_serial" ||
+    fail "contact at $ranks ranks: exit $rc"
+done
+mpi 2 c_half run "$C_CASE" "${C_SETS[@]}" --set time.end=1.2e-3 --out "$TMP/c_half"
+cp -r "$TMP/c_half" "$TMP/c_half3"
+"$BIN" resume "$TMP/c_half" --set time.end=2.4e-3 --threads 1 >/dev/null 2>&1 </dev/null &&
+  same "contact, 2 ranks resumed at 1" "$TMP/c_half" "$TMP/c_serial" ||
+  fail "contact: resume at 1 rank failed"
+mpi 3 c_resume3 resume "$TMP/c_half3" --set time.end=2.4e-3
+[[ $rc -eq 0 ]] && same "contact, 2 ranks resumed at 3" "$TMP/c_half3" "$TMP/c_serial" ||
+  fail "contact: resume at 3 ranks: exit $rc"
+touched=$(/usr/bin/python3 -c '
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print("in contact" if max(float(r["contact_energy"]) for r in rows) > 0 else "never touched")' \
+  "$TMP/c_serial/history.csv")
+[[ $touched == "in contact" ]] && ok "contact: the blocks collide" || fail "contact: $touched"
+
+# A contact too soft for the impact at 2 ranks: the interpenetration check
+# stops the run with the one-rank run's exit code and names the pair.
+mpi 2 soft run "$C_CASE" --set contact.stiffness=1e4 --out "$TMP/soft"
+[[ $rc -eq 3 ]] && grep -q "too close to (not bonded) particle 640" "$TMP/soft.err" &&
+  ok "interpenetration at 2 ranks: exit 3, the pair named" ||
+  { fail "interpenetration at 2 ranks: exit $rc"; sed 's/^/    /' "$TMP/soft.err" | head -n 4; }
 
 # The finite-strain model (three halos a step) at 2 ranks: the 55.9 kN rod.
 FS_SETS=(--set l0=0.002 --set time.end=2e-4 --set output.frame_interval=5e-5)

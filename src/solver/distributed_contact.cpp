@@ -1,0 +1,141 @@
+#include "src/solver/distributed_contact.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "kernels/contact_force.hpp"
+#include "neighbor/contact_search.hpp"
+
+namespace mpsolid {
+
+namespace {
+// Adds the wall time of its scope to a halo cost.
+class CommunicationTime {
+ public:
+  explicit CommunicationTime(HaloCost& cost)
+      : cost_(cost), start_(std::chrono::steady_clock::now()) {}
+  ~CommunicationTime() {
+    cost_.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  HaloCost& cost_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Every moving candidate's position from its owner: the owned moving
+// candidates of the ranks, gathered in rank order, are all of them in
+// candidate order (ranks own ascending storage ranges).
+void gather_candidate_positions(const RankContact& rc, ContactState& c, ParticleStore& p,
+                                const Communicator& world, HaloCost& cost) {
+  CommunicationTime t(cost);
+  std::vector<double> mine;
+  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a) {
+    mine.push_back(p.x[c.candidates[a]]);
+    mine.push_back(p.y[c.candidates[a]]);
+  }
+  cost.bytes_sent += 8.0 * static_cast<double>(mine.size());
+  const std::vector<double> all = world.all_gather(mine);
+  if (all.size() != 2 * (c.size() - c.first_moving))
+    throw std::logic_error("contact: the ranks' candidates do not cover the moving ones");
+  for (std::size_t a = c.first_moving; a < c.size(); ++a) {
+    p.x[c.candidates[a]] = all[2 * (a - c.first_moving)];
+    p.y[c.candidates[a]] = all[2 * (a - c.first_moving) + 1];
+  }
+}
+
+// The contact halo of the current list: what this rank needs (partners of
+// its candidates it neither owns nor gets from the bond halo, walls aside),
+// asked of their owners; what the others ask of it.
+LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const ParticleStore& p,
+                            const LocalLayout& layout, const Communicator& world, HaloCost& cost) {
+  std::vector<std::uint32_t> need;  // global storage indices
+  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a)
+    for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
+      const std::uint32_t j = c.partner[k];
+      if ((j >= layout.owned.begin && j < layout.owned.end) || p.kind[j] == Kind::wall ||
+          std::binary_search(rc.bond_ghosts.begin(), rc.bond_ghosts.end(), j))
+        continue;
+      need.push_back(layout.global_of[j]);
+    }
+  std::sort(need.begin(), need.end());
+  need.erase(std::unique(need.begin(), need.end()), need.end());
+  // Every rank's request, [count, indices...], in rank order.
+  std::vector<double> request{static_cast<double>(need.size())};
+  for (const std::uint32_t g : need) request.push_back(static_cast<double>(g));
+  std::vector<double> all;
+  {
+    CommunicationTime t(cost);
+    cost.bytes_sent += 8.0 * static_cast<double>(request.size());
+    all = world.all_gather(request);
+  }
+  const int me = world.rank();
+  std::vector<std::vector<std::uint32_t>> send(static_cast<std::size_t>(world.size())),
+      receive(send.size());
+  std::size_t at = 0;
+  for (int r = 0; r < world.size(); ++r) {
+    const auto count = static_cast<std::size_t>(all.at(at++));
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto g = static_cast<std::uint32_t>(all.at(at++));
+      const int owner = rc.decomposition.owner_of(g);
+      const auto local = static_cast<std::uint32_t>(layout.local_of(g));
+      if (r == me)
+        receive[static_cast<std::size_t>(owner)].push_back(local);
+      else if (owner == me)
+        send[static_cast<std::size_t>(r)].push_back(local);
+    }
+  }
+  LocalHalo halo;
+  for (int r = 0; r < world.size(); ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (send[k].empty() && receive[k].empty()) continue;
+    halo.peers.push_back(r);
+    halo.send.push_back(std::move(send[k]));
+    halo.receive.push_back(std::move(receive[k]));
+  }
+  return halo;
+}
+}  // namespace
+
+RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
+                              const Decomposition& d, const LocalHalo& bond_halo) {
+  RankContact rc;
+  rc.decomposition = d;
+  const ParticleStore& p = s.particles;
+  const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),
+                           std::min(layout.owned.end, p.moving().end)};
+  if (s.contact.enabled() && moving_owned.begin < moving_owned.end)
+    rc.owned = s.contact.candidates_in(moving_owned);
+  for (const auto& list : bond_halo.receive)
+    rc.bond_ghosts.insert(rc.bond_ghosts.end(), list.begin(), list.end());
+  std::sort(rc.bond_ghosts.begin(), rc.bond_ghosts.end());
+  return rc;
+}
+
+void rebuild_rank_contact(RankContact& rc, SolverState& s, const LocalLayout& layout,
+                          const Communicator& world, HaloCost& cost) {
+  ContactState& c = s.contact;
+  gather_candidate_positions(rc, c, s.particles, world, cost);
+  build_contact_list(c, s.particles, s.bonds);
+  rc.halo = plan_contact_halo(rc, c, s.particles, layout, world, cost);
+}
+
+void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layout,
+                       const Communicator& world, std::int64_t step, HaloCost& cost) {
+  ContactState& c = s.contact;
+  ParticleStore& p = s.particles;
+  exchange_halo(world, rc.halo, {field_of(p.x), field_of(p.y)}, cost);
+  compute_contact_forces(c, p, rc.owned, step);
+  std::int64_t stale = 0;
+  {
+    CommunicationTime t(cost);
+    stale = world.max(c.stale.step.load(std::memory_order_relaxed) == step ? 1 : 0);
+  }
+  if (stale == 0) return;
+  rebuild_rank_contact(rc, s, layout, world, cost);
+  compute_contact_forces(c, p, rc.owned, step);
+}
+
+}  // namespace mpsolid
