@@ -216,7 +216,7 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
   facts.steps = sim.step() - facts.start_step;
   facts.wall_seconds = seconds_since_start();
   facts.thread_wait_seconds = team_wait_seconds() - facts.wait_at_start;
-  facts.rank_halo = sim.rank_halo();
+  facts.rank_times = sim.rank_times();
   {
     auto t = sim.timers().time(Phase::output);
     outputs.publish();

@@ -52,3 +52,20 @@ class PhaseTimers {
 };
 
 }  // namespace mpsolid
+
+namespace mpsolid {
+
+// One MPI rank's share of a run's stepping (docs/mpi.md), for run.json:
+// wall seconds in its passes (communication excluded) and in its halo
+// exchanges (waits for slower ranks included), the bytes it sent, and its
+// particles.
+struct RankTimes {
+  double contact_seconds = 0;  // the contact pass and its rebuilds
+  double strain_seconds = 0;   // the strain pass(es)
+  double forces_seconds = 0;   // forces and integration
+  double halo_seconds = 0;
+  double halo_bytes_sent = 0;
+  double owned = 0, ghosts = 0;  // particles owned, and held for its passes
+};
+
+}  // namespace mpsolid

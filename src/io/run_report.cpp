@@ -51,15 +51,22 @@ Json thread_facts_json(const RunFacts& facts) {
       {"thread_wait_share", capacity > 0 ? facts.thread_wait_seconds / capacity : 0.0},
       {"team_size_seconds", sizes},
       {"team_size_changes", facts.team_size_changes}};
-  // Over several ranks: each rank's halo exchanges (waiting for the slowest
-  // rank included) and the bytes it sent.
-  if (!facts.rank_halo.empty()) {
+  // Over several ranks: each rank's particles, its passes' time, its halo
+  // exchanges (waiting for the slowest rank included) and the bytes it sent.
+  if (!facts.rank_times.empty()) {
     Json ranks = Json::array();
-    for (std::size_t r = 0; r < facts.rank_halo.size(); ++r)
+    for (std::size_t r = 0; r < facts.rank_times.size(); ++r) {
+      const RankTimes& t = facts.rank_times[r];
       ranks.push_back({{"rank", r},
-                       {"halo_seconds", facts.rank_halo[r].first},
-                       {"halo_bytes_sent", facts.rank_halo[r].second}});
-    facts_json["rank_halo"] = ranks;
+                       {"owned_particles", static_cast<std::int64_t>(t.owned)},
+                       {"ghosts", static_cast<std::int64_t>(t.ghosts)},
+                       {"contact_seconds", t.contact_seconds},
+                       {"strain_seconds", t.strain_seconds},
+                       {"forces_seconds", t.forces_seconds},
+                       {"halo_seconds", t.halo_seconds},
+                       {"halo_bytes_sent", t.halo_bytes_sent}});
+    }
+    facts_json["per_rank"] = ranks;
   }
   return facts_json;
 }

@@ -33,9 +33,8 @@ struct RunFacts {
   std::vector<std::string> overrides;  // --set values of this segment
   int threads = 1;
   int ranks = 1;  // MPI ranks (docs/mpi.md)
-  // Per rank over several ranks: seconds in halo exchanges (waits included)
-  // and bytes sent, in this segment.
-  std::vector<std::pair<double, double>> rank_halo;
+  // Per rank over several ranks (this segment).
+  std::vector<RankTimes> rank_times;
   std::int64_t steps = 0;  // steps advanced in this run
   double wall_seconds = 0;
   int frames = 0;

@@ -31,7 +31,7 @@ void advance_rank_part(RankPart& part, const Communicator& world, double dt, std
       [&](auto& m) {
         if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
           advance_decomposed(m, part.local, part.layout, part.halo, part.contact, world, dt, steps,
-                             part.halo_cost);
+                             part.halo_cost, part.times);
       },
       part.model);
 }

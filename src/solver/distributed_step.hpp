@@ -12,6 +12,7 @@
 // its partial local row cannot give, is never needed.) With contact, the
 // contact pass (src/solver/distributed_contact.hpp) follows the positions'
 // halo, as it comes first in the serial step.
+#include <chrono>
 #include <cstdint>
 #include <initializer_list>
 #include <type_traits>
@@ -21,6 +22,7 @@
 #include "kernels/paper_model.hpp"
 #include "src/case/case_spec.hpp"
 #include "src/core/particle_field.hpp"
+#include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
@@ -45,6 +47,17 @@ inline constexpr bool kDecomposable =
     std::is_same_v<Model, PaperModel> || std::is_same_v<Model, PaperConservativeModel> ||
     HasStressHalo<Model>;
 
+// Adds the wall time of pass() to `seconds`, less the time it spent in
+// halo exchanges (which `cost` counts).
+template <class Pass>
+void time_pass(double& seconds, const HaloCost& cost, Pass&& pass) {
+  const double in_halos = cost.seconds;
+  const auto start = std::chrono::steady_clock::now();
+  pass();
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+             (cost.seconds - in_halos);
+}
+
 // The strain pass of the owned particles, with the halos that leave every
 // ghost's force-pass inputs at their owners' values.
 template <class Model>
@@ -68,7 +81,7 @@ void decomposed_strain(Model& model, SolverState& s, const LocalLayout& layout, 
 template <class Model>
 void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
                         RankContact& contact, const Communicator& world, double dt,
-                        std::int64_t steps, HaloCost& cost) {
+                        std::int64_t steps, HaloCost& cost, RankTimes& times) {
   static_assert(kDecomposable<Model>, "a model the decomposed step does not cover");
   constexpr bool rot = Model::uses_rotation;
   ParticleStore& p = s.particles;
@@ -84,15 +97,19 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
                     cost);
     else
       exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
-    if (s.contact.enabled()) rank_contact_pass(contact, s, layout, world, s.step, cost);
+    if (s.contact.enabled())
+      time_pass(times.contact_seconds, cost,
+                [&] { rank_contact_pass(contact, s, layout, world, s.step, cost); });
     if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
-    decomposed_strain(model, s, layout, halo, world, cost);
+    time_pass(times.strain_seconds, cost,
+              [&] { decomposed_strain(model, s, layout, halo, world, cost); });
     // The force pass reads no position: a block's forces and its
     // integration follow each other, as in the team step.
-    if (moving_owned.begin < moving_owned.end) {
-      model.compute_forces_block(p, s.bonds, moving_owned);
-      integrate_block<rot>(s, dt, moving_owned, kicks);
-    }
+    if (moving_owned.begin < moving_owned.end)
+      time_pass(times.forces_seconds, cost, [&] {
+        model.compute_forces_block(p, s.bonds, moving_owned);
+        integrate_block<rot>(s, dt, moving_owned, kicks);
+      });
   }
 }
 
@@ -105,6 +122,7 @@ struct RankPart {
   RankContact contact;
   AnyModel model;
   HaloCost halo_cost;  // summed over every step so far
+  RankTimes times;     // the passes' wall time, summed likewise
 };
 
 // This rank's part of the set-up state `global`, cut with the rigid and

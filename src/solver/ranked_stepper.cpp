@@ -182,10 +182,18 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   global.step = p.local.step;
   if (global.contact.enabled())
     gather_contact_marks(p.local.contact, rebuilds, global.contact, world);
-  const std::vector<double> halo = world.all_gather({p.halo_cost.seconds, p.halo_cost.bytes_sent});
-  rank_halo_.clear();
-  for (std::size_t r = 0; r + 1 < halo.size(); r += 2)
-    rank_halo_.emplace_back(halo[r], halo[r + 1]);
+  RankTimes mine = p.times;
+  mine.halo_seconds = p.halo_cost.seconds;
+  mine.halo_bytes_sent = p.halo_cost.bytes_sent;
+  mine.owned = static_cast<double>(p.layout.owned.size());
+  mine.ghosts = static_cast<double>(p.layout.size() - p.layout.owned.size());
+  const std::vector<double> all =
+      world.all_gather({mine.contact_seconds, mine.strain_seconds, mine.forces_seconds,
+                        mine.halo_seconds, mine.halo_bytes_sent, mine.owned, mine.ghosts});
+  rank_times_.clear();
+  for (std::size_t at = 0; at + 7 <= all.size(); at += 7)
+    rank_times_.push_back(
+        {all[at], all[at + 1], all[at + 2], all[at + 3], all[at + 4], all[at + 5], all[at + 6]});
 }
 
 namespace {

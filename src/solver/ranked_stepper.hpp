@@ -19,6 +19,7 @@
 #include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
 #include "src/core/solver_state.hpp"
+#include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
 
 namespace mpsolid {
@@ -31,14 +32,14 @@ class RankedStepper {
   // Every rank: rank 0's state to all, `steps` decomposed steps, the whole
   // state back on every rank.
   void advance(SolverState& global, std::int64_t steps);
-  // Every rank's halo cost so far (seconds, bytes sent), gathered after each
-  // batch: rank 0 reports them in run.json.
-  const std::vector<std::pair<double, double>>& rank_halo() const { return rank_halo_; }
+  // Every rank's times and halo cost so far, gathered after each batch:
+  // rank 0 reports them in run.json.
+  const std::vector<RankTimes>& rank_times() const { return rank_times_; }
 
  private:
   struct Parts;
   std::unique_ptr<Parts> parts_;
-  std::vector<std::pair<double, double>> rank_halo_;
+  std::vector<RankTimes> rank_times_;
 };
 
 // Whether simulations of this process step over the ranks: the command line

@@ -51,8 +51,8 @@ class Simulation {
   PhaseTimers& timers() { return timers_; }
   // Over several MPI ranks: each rank's halo cost so far (seconds, bytes
   // sent); empty on one rank.
-  std::vector<std::pair<double, double>> rank_halo() const {
-    return ranked_ ? ranked_->rank_halo() : std::vector<std::pair<double, double>>{};
+  std::vector<RankTimes> rank_times() const {
+    return ranked_ ? ranked_->rank_times() : std::vector<RankTimes>{};
   }
   const PhaseTimers& timers() const { return timers_; }
 

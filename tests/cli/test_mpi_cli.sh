@@ -11,7 +11,8 @@
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
-#  - run.json records the ranks and each rank's halo time and bytes.
+#  - run.json records the ranks and, per rank, its particles, its passes'
+#    times, and its halo time and bytes.
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -62,11 +63,13 @@ for ranks in 2 3; do
   recorded=$(/usr/bin/python3 -c '
 import json, sys
 r = json.load(open(sys.argv[1]))
-halo = r.get("rank_halo", [])
-ok = len(halo) == r["ranks"] and all(h["halo_bytes_sent"] > 0 and h["halo_seconds"] >= 0 for h in halo)
-print(r["ranks"], "with a halo entry per rank" if ok else "WITHOUT a halo entry per rank")' \
+rows = r.get("per_rank", [])
+ok = (len(rows) == r["ranks"] and sum(x["owned_particles"] for x in rows) == r["particles"]
+      and all(x["halo_bytes_sent"] > 0 and x["halo_seconds"] >= 0 and x["strain_seconds"] > 0
+              and x["forces_seconds"] > 0 and x["ghosts"] > 0 for x in rows))
+print(r["ranks"], "with an entry per rank" if ok else "WITHOUT a whole entry per rank")' \
     "$TMP/ranks$ranks/run.json")
-  [[ $recorded == "$ranks with a halo entry per rank" ]] &&
+  [[ $recorded == "$ranks with an entry per rank" ]] &&
     ok "$ranks ranks: run.json says ranks = $recorded" ||
     fail "$ranks ranks: run.json says ranks = $recorded"
 done
