@@ -57,8 +57,8 @@ namespace mpsolid {
 
 // One MPI rank's share of a run's stepping (docs/mpi.md), for run.json:
 // wall seconds in its passes (communication excluded) and in its halo
-// exchanges (waits for slower ranks included), the bytes it sent, and its
-// particles.
+// exchanges (waits for slower ranks included), the bytes it sent, its
+// particles and its memory.
 struct RankTimes {
   double contact_seconds = 0;  // the contact pass and its rebuilds
   double strain_seconds = 0;   // the strain pass(es)
@@ -66,6 +66,7 @@ struct RankTimes {
   double halo_seconds = 0;
   double halo_bytes_sent = 0;
   double owned = 0, ghosts = 0;  // particles owned, and held for its passes
+  double peak_memory_bytes = 0;  // the rank's peak resident memory
 };
 
 }  // namespace mpsolid

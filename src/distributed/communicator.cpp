@@ -70,6 +70,22 @@ void Communicator::exchange(const std::vector<int>& peers,
   MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
 }
 
+void Communicator::send(int to, const std::vector<double>& values) const {
+  constexpr int kTag = 2;
+  MPI_Send(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, to, kTag, MPI_COMM_WORLD);
+}
+
+std::vector<double> Communicator::receive(int from) const {
+  constexpr int kTag = 2;
+  MPI_Status status;
+  MPI_Probe(from, kTag, MPI_COMM_WORLD, &status);
+  int count = 0;
+  MPI_Get_count(&status, MPI_DOUBLE, &count);
+  std::vector<double> values(static_cast<std::size_t>(count));
+  MPI_Recv(values.data(), count, MPI_DOUBLE, from, kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return values;
+}
+
 std::int64_t Communicator::max(std::int64_t mine) const {
   std::int64_t all = mine;
   if (size_ > 1) MPI_Allreduce(&mine, &all, 1, MPI_INT64_T, MPI_MAX, MPI_COMM_WORLD);
@@ -153,6 +169,12 @@ void Communicator::exchange(const std::vector<int>& peers,
 
 std::int64_t Communicator::max(std::int64_t mine) const {
   return mine;
+}
+void Communicator::send(int, const std::vector<double>&) const {
+  throw std::invalid_argument("send: a one-rank run has no other rank");
+}
+std::vector<double> Communicator::receive(int) const {
+  throw std::invalid_argument("receive: a one-rank run has no other rank");
 }
 void Communicator::barrier() const {}
 void Communicator::broadcast(std::vector<double>&) const {}

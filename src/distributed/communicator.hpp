@@ -30,6 +30,10 @@ class Communicator {
                 std::vector<std::vector<double>>& in) const;
   // The largest of every rank's value, on every rank.
   std::int64_t max(std::int64_t mine) const;
+  // A message to one rank, and one from it (any length: the receiver
+  // learns it). Messages between two ranks arrive in the order sent.
+  void send(int to, const std::vector<double>& values) const;
+  std::vector<double> receive(int from) const;
   void barrier() const;
   // Rank 0's values, on every rank (`values` is resized on the others).
   void broadcast(std::vector<double>& values) const;

@@ -38,19 +38,17 @@ ParticleStore local_particles(const ParticleStore& global, const LocalLayout& la
   p.resize(layout.size());
   for (std::size_t k = 0; k < layout.size(); ++k) {
     const std::size_t g = layout.global_of[k];
-    for (auto member :
-         {&ParticleStore::x, &ParticleStore::y, &ParticleStore::vx, &ParticleStore::vy,
-          &ParticleStore::theta, &ParticleStore::omega, &ParticleStore::x0, &ParticleStore::y0,
-          &ParticleStore::half_cos, &ParticleStore::half_sin, &ParticleStore::strain,
-          &ParticleStore::pressure, &ParticleStore::fx, &ParticleStore::fy, &ParticleStore::torque,
-          &ParticleStore::inv_mass, &ParticleStore::inv_inertia, &ParticleStore::lambda,
-          &ParticleStore::mu})
-      (p.*member)[k] = (global.*member)[g];
+    for (const auto member : kParticleDoubleArrays) (p.*member)[k] = (global.*member)[g];
     p.id[k] = global.id[g];
     p.body[k] = global.body[g];
     p.material[k] = global.material[g];
     p.kind[k] = global.kind[g];
   }
+  set_kind_ranges(p);
+  return p;
+}
+
+void set_kind_ranges(ParticleStore& p) {
   // Kinds are grouped [wall | elastic | rigid] globally, hence locally too.
   const auto first_not = [&](std::size_t from, Kind kind) {
     while (from < p.size() && p.kind[from] == kind) ++from;
@@ -63,7 +61,6 @@ ParticleStore local_particles(const ParticleStore& global, const LocalLayout& la
   p.rigid = {elastic_end, first_not(elastic_end, Kind::rigid)};
   if (p.rigid.end != p.size())
     throw std::logic_error("local_particles: kinds are not grouped in storage");
-  return p;
 }
 
 BondTable local_bonds(const BondTable& global, const ParticleStore& local,

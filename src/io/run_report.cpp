@@ -64,7 +64,8 @@ Json thread_facts_json(const RunFacts& facts) {
                        {"strain_seconds", t.strain_seconds},
                        {"forces_seconds", t.forces_seconds},
                        {"halo_seconds", t.halo_seconds},
-                       {"halo_bytes_sent", t.halo_bytes_sent}});
+                       {"halo_bytes_sent", t.halo_bytes_sent},
+                       {"peak_memory_bytes", t.peak_memory_bytes}});
     }
     facts_json["per_rank"] = ranks;
   }

@@ -6,22 +6,29 @@
 
 namespace mpsolid {
 
-RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
-                        const Communicator& world) {
+Decomposition decompose_state(const SolverState& global, int ranks) {
   // Rigid and loaded bodies stay on one rank (their sums run over all of them).
   std::vector<Range> whole;
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
   for (const StepLoad& l : global.loads) whole.push_back(l.range);
-  const Decomposition d = decompose(global.bonds, world.size(), whole);
-  const HaloPlan plan = plan_halo(global.bonds, d, world.rank());
+  return decompose(global.bonds, ranks, whole);
+}
+
+RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   RankPart part;
-  part.layout = local_layout(d, plan, world.rank(), global.contact.candidates);
-  part.halo = local_halo(plan, part.layout);
-  part.local = local_solver_state(global, part.layout);
-  part.contact = make_rank_contact(part.local, part.layout, d, part.halo);
+  part.layout = std::move(local.layout);
+  part.halo = std::move(local.halo);
+  part.local = std::move(local.state);
+  part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
   return part;
+}
+
+RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
+                        const Communicator& world) {
+  return make_rank_part(spec,
+                        local_part(global, decompose_state(global, world.size()), world.rank()));
 }
 
 void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps) {

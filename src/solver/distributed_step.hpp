@@ -26,6 +26,7 @@
 #include "src/distributed/communicator.hpp"
 #include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/part_message.hpp"
 #include "src/solver/distributed_contact.hpp"
 #include "src/solver/step.hpp"
 
@@ -125,14 +126,22 @@ struct RankPart {
   RankTimes times;     // the passes' wall time, summed likewise
 };
 
-// This rank's part of the set-up state `global`, cut with the rigid and
-// loaded bodies kept whole. Throws std::invalid_argument for a case the
-// decomposed step does not cover.
+// The cut of the set-up state `global` over `ranks`, rigid and loaded
+// bodies kept whole.
+Decomposition decompose_state(const SolverState& global, int ranks);
+
+// A rank's part ready to step: its local part (as rank 0 sends it) with the
+// model made from it.
+RankPart make_rank_part(const CaseSpec& spec, LocalPart local);
+// This rank's part of the set-up state `global`, cut by decompose_state
+// (every rank holding `global`, as the tests do). Throws
+// std::invalid_argument for a case the decomposed step does not cover.
 RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const Communicator& world);
 
-// Advances the part by `steps` decomposed steps of dt; every particle of the
-// local state must be at its current value (with contact, the list is built
-// first).
+// Advances the part by `steps` decomposed steps of dt. Its owned particles,
+// bodies and loads must be current; the ghosts get their values from the
+// halos before any pass reads them (with contact, the list is built first,
+// from every rank's own candidates).
 void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps);
 
 }  // namespace mpsolid

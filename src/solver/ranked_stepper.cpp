@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "src/core/float_mode.hpp"
+#include "src/core/process_memory.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/simulation.hpp"
@@ -13,6 +16,7 @@ namespace mpsolid {
 struct RankedStepper::Parts {
   RankPart part;
   double dt = 0;
+  Decomposition decomposition;  // rank 0: who owns what
 };
 
 namespace {
@@ -41,159 +45,181 @@ void write_fields(StepLoad& l, const double* in) {
   l.cy_on = in[2];
 }
 
-// The index of the item called `name` (rigid bodies and loads have unique names).
-template <class Item>
-std::size_t index_named(const std::vector<Item>& items, const std::string& name) {
-  for (std::size_t k = 0; k < items.size(); ++k)
-    if (items[k].name == name) return k;
-  throw std::logic_error("no item named " + name);
+bool inside(Range r, Range owned) {
+  return r.begin >= owned.begin && r.end <= owned.end;
 }
 
-// Appends every item's fields to `out`, in order.
-template <class Item>
-void pack_items(const std::vector<Item>& items, std::vector<double>& out) {
-  for (const Item& item : items) {
-    out.resize(out.size() + fields_of(&item));
-    read_fields(item, out.data() + out.size() - fields_of(&item));
+// A rank's slice of a state: its owned particles' state arrays (storage
+// range `owned`), then the fields of the bodies and loads inside it, in
+// order. Rank 0 writes it from the whole state (the rank's global range) and
+// reads it back into it; each rank reads it into and writes it from its local
+// state (its local owned range, where every body and load is its own).
+class Slice {
+ public:
+  static void append(const SolverState& global, Range owned, std::vector<double>& out) {
+    for (const StateArray& a : kStateArrays) {
+      const std::vector<double>& v = global.particles.*a.member;
+      out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
+                 v.begin() + static_cast<long>(owned.end));
+    }
+    append_items(global.rigid_bodies, owned, out);
+    append_items(global.loads, owned, out);
   }
+  static void read(SolverState& global, Range owned, const std::vector<double>& in,
+                   std::size_t& at) {
+    for (const StateArray& a : kStateArrays) {
+      std::vector<double>& v = global.particles.*a.member;
+      std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
+                  v.begin() + static_cast<long>(owned.begin));
+      at += owned.size();
+    }
+    read_items(global.rigid_bodies, owned, in, at);
+    read_items(global.loads, owned, in, at);
+  }
+
+ private:
+  template <class Item>
+  static void append_items(const std::vector<Item>& items, Range owned, std::vector<double>& out) {
+    for (const Item& item : items) {
+      if (!inside(item.range, owned)) continue;
+      out.resize(out.size() + fields_of(&item));
+      read_fields(item, out.data() + out.size() - fields_of(&item));
+    }
+  }
+  template <class Item>
+  static void read_items(std::vector<Item>& items, Range owned, const std::vector<double>& in,
+                         std::size_t& at) {
+    for (Item& item : items) {
+      if (!inside(item.range, owned)) continue;
+      write_fields(item, in.data() + at);
+      at += fields_of(&item);
+    }
+  }
+};
+
+// After a batch, what a rank reports besides its slice: the first step its
+// contact pass found a pair too close (-1: none), its list rebuilds in the
+// batch, and its times so far.
+constexpr std::size_t kReportSize = 11;
+void append_report(const RankPart& p, std::int64_t rebuilds, std::vector<double>& out) {
+  const RankTimes& t = p.times;
+  for (const double v :
+       {static_cast<double>(p.local.contact.too_close.step.load()), static_cast<double>(rebuilds),
+        t.contact_seconds, t.strain_seconds, t.forces_seconds, p.halo_cost.seconds,
+        p.halo_cost.bytes_sent, static_cast<double>(p.layout.owned.size()),
+        static_cast<double>(p.layout.size() - p.layout.owned.size()), peak_resident_bytes(), 0.0})
+    out.push_back(v);
 }
-// Reads every item's fields from `in` at `at`, in order.
-template <class Item>
-void unpack_items(std::vector<Item>& items, const std::vector<double>& in, std::size_t& at) {
-  for (Item& item : items) {
-    write_fields(item, in.data() + at);
-    at += fields_of(&item);
-  }
+// Reads a rank's report into the whole state's contact (the first step any
+// rank found a pair too close; the rebuilds: every rank rebuilds together,
+// so rank 0's count) and that rank's times.
+RankTimes read_report(const std::vector<double>& in, std::size_t at, int rank,
+                      ContactState& contact) {
+  const auto step = static_cast<std::int64_t>(in[at]);
+  const std::int64_t first = contact.too_close.step.load();
+  if (step >= 0 && (first < 0 || step < first)) contact.too_close.step.store(step);
+  if (rank == 0) contact.rebuilds += static_cast<std::int64_t>(in[at + 1]);
+  RankTimes t;
+  t.contact_seconds = in[at + 2];
+  t.strain_seconds = in[at + 3];
+  t.forces_seconds = in[at + 4];
+  t.halo_seconds = in[at + 5];
+  t.halo_bytes_sent = in[at + 6];
+  t.owned = in[at + 7];
+  t.ghosts = in[at + 8];
+  t.peak_memory_bytes = in[at + 9];
+  return t;
 }
 
-// The local items' fields from the whole state's items of the same name.
-template <class Item>
-void copy_to_local(const std::vector<Item>& global, std::vector<Item>& local) {
-  std::vector<double> fields;
-  for (Item& item : local) {
-    fields.resize(fields_of(&item));
-    read_fields(global[index_named(global, item.name)], fields.data());
-    write_fields(item, fields.data());
-  }
-}
-
-// Each rank's local items back into every rank's whole state: (index,
-// fields...) records gathered in rank order.
-template <class Item>
-void gather_items(const std::vector<Item>& local, std::vector<Item>& global,
-                  const Communicator& world) {
-  const std::size_t width = 1 + fields_of(static_cast<const Item*>(nullptr));
-  std::vector<double> mine;
-  for (const Item& item : local) {
-    mine.push_back(static_cast<double>(index_named(global, item.name)));
-    mine.resize(mine.size() + width - 1);
-    read_fields(item, mine.data() + mine.size() - (width - 1));
-  }
-  const std::vector<double> all = world.all_gather(mine);
-  for (std::size_t at = 0; at + width <= all.size(); at += width)
-    write_fields(global[static_cast<std::size_t>(all[at])], all.data() + at + 1);
-}
-
-// What the ranks' contact passes marked, into the whole state's contact:
-// the first step any rank found a pair too close (the interpenetration
-// check reports it), and the rebuilds (every rank rebuilds together).
-void gather_contact_marks(const ContactState& local, std::int64_t rebuilds_before,
-                          ContactState& global, const Communicator& world) {
-  const std::vector<double> marks =
-      world.all_gather({static_cast<double>(local.too_close.step.load())});
-  for (const double m : marks) {
-    const auto step = static_cast<std::int64_t>(m);
-    const std::int64_t first = global.too_close.step.load();
-    if (step >= 0 && (first < 0 || step < first)) global.too_close.step.store(step);
-  }
-  global.rebuilds += local.rebuilds - rebuilds_before;
-}
-
-// Rank 0's evolving state, as one message: the state arrays, each rigid
-// body's pose and velocity, each load's switch-on, the step.
-std::vector<double> pack_state(const SolverState& s) {
-  std::vector<double> out;
-  for (const StateArray& a : kStateArrays) {
-    const std::vector<double>& v = s.particles.*a.member;
-    out.insert(out.end(), v.begin(), v.end());
-  }
-  pack_items(s.rigid_bodies, out);
-  pack_items(s.loads, out);
-  out.push_back(static_cast<double>(s.step));
-  return out;
-}
-
-void unpack_state(const std::vector<double>& in, SolverState& s) {
-  std::size_t at = 0;
-  for (const StateArray& a : kStateArrays)
-    for (double& x : s.particles.*a.member) x = in[at++];
-  unpack_items(s.rigid_bodies, in, at);
-  unpack_items(s.loads, in, at);
-  s.step = static_cast<std::int64_t>(in[at]);
+InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
+  return InputError(
+      fmt::format("{}: {} over {} MPI ranks is not supported yet ({}); run it on one rank (without "
+                  "mpirun, or with -np 1) and use --threads (docs/mpi.md)",
+                  spec.source, why, ranks, spec.name));
 }
 }  // namespace
 
 RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
     : parts_(std::make_unique<Parts>()) {
   const Communicator& world = Communicator::world();
-  const auto refuse = [&](const std::string& why) {
-    throw InputError(fmt::format(
-        "{}: {} over {} MPI ranks is not supported yet ({}); run it on one rank (without "
-        "mpirun, or with -np 1) and use --threads (docs/mpi.md)",
-        spec.source, why, world.size(), spec.name));
-  };
-  try {
-    parts_->part = make_rank_part(spec, global, world);
-  } catch (const std::invalid_argument& e) {
-    refuse(e.what());
-  }
   parts_->dt = spec.dt;
+  parts_->decomposition = decompose_state(global, world.size());
+  // Each follower's part, built and sent one at a time (rank 0 never holds
+  // two); an empty message tells a follower the case was refused.
+  for (int r = 1; r < world.size(); ++r) {
+    try {
+      const LocalPart part = local_part(global, parts_->decomposition, r);
+      pack_local_part(part, [&](const std::vector<double>& piece) { world.send(r, piece); });
+    } catch (const std::invalid_argument& e) {
+      for (int rest = r; rest < world.size(); ++rest) world.send(rest, {});
+      throw refusal(spec, e.what(), world.size());
+    }
+  }
+  try {
+    parts_->part = make_rank_part(spec, local_part(global, parts_->decomposition, 0));
+  } catch (const std::invalid_argument& e) {
+    throw refusal(spec, e.what(), world.size());
+  }
+}
+
+RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Parts>()) {
+  const Communicator& world = Communicator::world();
+  std::vector<double> first = world.receive(0);
+  if (first.empty()) throw InputError("rank 0 refused the case");
+  parts_->dt = spec.dt;
+  bool given = false;
+  parts_->part = make_rank_part(spec, unpack_local_part([&] {
+                                  if (given) return world.receive(0);
+                                  given = true;
+                                  return std::move(first);
+                                }));
 }
 
 RankedStepper::~RankedStepper() = default;
 
 void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   const Communicator& world = Communicator::world();
+  const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
-  // Rank 0's state to every rank (after a resume or a restore only rank 0 has it).
-  std::vector<double> state = world.rank() == 0 ? pack_state(global) : std::vector<double>{};
-  world.broadcast(state);
-  if (world.rank() != 0) unpack_state(state, global);
-  // The local state from it.
-  for (std::size_t k = 0; k < p.layout.size(); ++k)
-    for (const StateArray& a : kStateArrays)
-      (p.local.particles.*a.member)[k] = (global.particles.*a.member)[p.layout.global_of[k]];
-  copy_to_local(global.rigid_bodies, p.local.rigid_bodies);
-  copy_to_local(global.loads, p.local.loads);
+  for (int r = 1; r < world.size(); ++r) {
+    std::vector<double> slice{static_cast<double>(global.step)};
+    Slice::append(global, d.owned(r), slice);
+    world.send(r, slice);
+  }
+  // Rank 0's own slice, through the same message form.
+  std::vector<double> mine;
+  Slice::append(global, d.owned(0), mine);
+  std::size_t at = 0;
+  Slice::read(p.local, p.layout.owned, mine, at);
   p.local.step = global.step;
   const std::int64_t rebuilds = p.local.contact.rebuilds;
   advance_rank_part(p, world, parts_->dt, steps);
-  // Every rank's own particles, bodies and loads back into the whole state.
-  const Range owned = p.layout.owned;
-  for (const StateArray& a : kStateArrays) {
-    const std::vector<double>& mine = p.local.particles.*a.member;
-    const std::vector<double> all =
-        world.all_gather(std::vector<double>(mine.begin() + static_cast<long>(owned.begin),
-                                             mine.begin() + static_cast<long>(owned.end)));
-    global.particles.*a.member = all;
-  }
-  gather_items(p.local.rigid_bodies, global.rigid_bodies, world);
-  gather_items(p.local.loads, global.loads, world);
-  global.step = p.local.step;
-  if (global.contact.enabled())
-    gather_contact_marks(p.local.contact, rebuilds, global.contact, world);
-  RankTimes mine = p.times;
-  mine.halo_seconds = p.halo_cost.seconds;
-  mine.halo_bytes_sent = p.halo_cost.bytes_sent;
-  mine.owned = static_cast<double>(p.layout.owned.size());
-  mine.ghosts = static_cast<double>(p.layout.size() - p.layout.owned.size());
-  const std::vector<double> all =
-      world.all_gather({mine.contact_seconds, mine.strain_seconds, mine.forces_seconds,
-                        mine.halo_seconds, mine.halo_bytes_sent, mine.owned, mine.ghosts});
+  mine.clear();
+  Slice::append(p.local, p.layout.owned, mine);
+  append_report(p, p.local.contact.rebuilds - rebuilds, mine);
   rank_times_.clear();
-  for (std::size_t at = 0; at + 7 <= all.size(); at += 7)
-    rank_times_.push_back(
-        {all[at], all[at + 1], all[at + 2], all[at + 3], all[at + 4], all[at + 5], all[at + 6]});
+  for (int r = 0; r < world.size(); ++r) {
+    const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
+    at = 0;
+    Slice::read(global, d.owned(r), back, at);
+    rank_times_.push_back(read_report(back, at, r, global.contact));
+  }
+  global.step = p.local.step;
+}
+
+void RankedStepper::follow(std::int64_t steps) {
+  const Communicator& world = Communicator::world();
+  RankPart& p = parts_->part;
+  const std::vector<double> slice = world.receive(0);
+  p.local.step = static_cast<std::int64_t>(slice.at(0));
+  std::size_t at = 1;
+  Slice::read(p.local, p.layout.owned, slice, at);
+  const std::int64_t rebuilds = p.local.contact.rebuilds;
+  advance_rank_part(p, world, parts_->dt, steps);
+  std::vector<double> back;
+  Slice::append(p.local, p.layout.owned, back);
+  append_report(p, p.local.contact.rebuilds - rebuilds, back);
+  world.send(0, back);
 }
 
 namespace {
@@ -243,12 +269,20 @@ int follow_rank_zero() {
   world.broadcast(text);
   if (text.empty()) return 0;  // rank 0 stopped before its case
   try {
-    Simulation sim(load_case_text(text, "rank 0's case"));
+    const CaseSpec spec = load_case_text(text, "rank 0's case");
+    set_flush_subnormals(spec.flush_subnormals);
+    std::unique_ptr<RankedStepper> stepper;
+    try {
+      stepper = std::make_unique<RankedStepper>(spec);
+    } catch (const InputError&) {
+      // Rank 0 refused the case and reports it; wait to be released.
+    }
     for (;;) {
       std::int64_t steps = 0;
       world.broadcast(steps);
-      if (steps < 0) return 0;
-      sim.advance(steps);
+      if (steps < 0) return stepper ? 0 : 2;
+      if (!stepper) throw std::logic_error("steps for a refused case");
+      stepper->follow(steps);
     }
   } catch (const InputError&) {
     return 2;  // the same error as rank 0's, which reports it

@@ -1,15 +1,15 @@
 #pragma once
 // A run over several MPI ranks (docs/mpi.md). Rank 0 runs the command line
-// as always (the case, the run loop, every check and output); the other
-// ranks follow it: rank 0 sends them its case, then before each batch of
-// steps the number of steps and its state. Every rank steps its own
-// particles (the decomposed step); afterwards every rank holds the whole
-// state again, so checks and outputs on rank 0 read it as in a one-rank
-// run: the same bits at any rank count.
+// as always (the case, the set-up, the run loop, every check and output)
+// and holds the whole state; the other ranks follow it and hold only their
+// part. Rank 0 sends each follower the case and its part once, then before
+// each batch of steps the number of steps and the follower's own slice of
+// the state; every rank steps its own particles (the decomposed step), and
+// the slices come back to rank 0, whose checks and outputs then read the
+// whole state as in a one-rank run: the same bits at any rank count.
 //
-// First version: every rank keeps the whole state (memory per rank does not
-// shrink yet). Every model and contact are decomposed, each rigid or loaded
-// body owned by one rank.
+// Every model and contact are decomposed, each rigid or loaded body owned
+// by one rank.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,14 +26,21 @@ namespace mpsolid {
 
 class RankedStepper {
  public:
-  // Throws InputError when the case cannot be decomposed yet.
+  // Rank 0: cuts the set-up state `global`, sends every other rank its part
+  // and keeps its own. Throws InputError when the case cannot be decomposed
+  // (every follower is told, and waits to be released).
   RankedStepper(const CaseSpec& spec, const SolverState& global);
+  // A follower: its part from rank 0. Throws InputError when rank 0 refused
+  // the case.
+  explicit RankedStepper(const CaseSpec& spec);
   ~RankedStepper();
-  // Every rank: rank 0's state to all, `steps` decomposed steps, the whole
-  // state back on every rank.
+  // Rank 0: every rank's owned slice of `global` (its particles, bodies and
+  // loads) to it, `steps` decomposed steps on every rank, the slices back.
   void advance(SolverState& global, std::int64_t steps);
-  // Every rank's times and halo cost so far, gathered after each batch:
-  // rank 0 reports them in run.json.
+  // A follower's side of advance.
+  void follow(std::int64_t steps);
+  // Rank 0: every rank's times, halo cost and memory so far, gathered after
+  // each batch, for run.json.
   const std::vector<RankTimes>& rank_times() const { return rank_times_; }
 
  private:

@@ -17,15 +17,10 @@
 namespace mpsolid {
 
 Simulation::Simulation(const CaseSpec& spec) {
-  const Communicator& world = Communicator::world();
   const bool ranked = ranked_runs();
   set_flush_subnormals(spec.flush_subnormals);
   TimeStepChoice choice = fix_time_step(spec, timers_);
   spec_ = std::move(choice.spec);
-  // The case with the step chosen: the followers step with rank 0's step
-  // (the resolved case of an automatic step names it, and a defaulted
-  // history interval it fixed).
-  if (ranked && world.rank() == 0) followers::send_case(spec_.resolved_toml);
   stable_step_ = choice.estimate;
   state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
   model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
@@ -33,7 +28,12 @@ Simulation::Simulation(const CaseSpec& spec) {
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
-  if (ranked) ranked_ = std::make_shared<RankedStepper>(spec_, state_);
+  if (ranked) {
+    // The case with the step chosen (the resolved case of an automatic step
+    // names it), then each follower's part.
+    followers::send_case(spec_.resolved_toml);
+    ranked_ = std::make_shared<RankedStepper>(spec_, state_);
+  }
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }

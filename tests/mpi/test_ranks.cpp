@@ -100,7 +100,7 @@ TEST(Ranks, ChunkSumsGatheredInRankOrderGiveTheSerialBits) {
 TEST(Ranks, DecomposedStepGivesTheSerialBits) {
   const Communicator& world = Communicator::world();
   set_thread_count(1);
-  for (const std::string model : model_names()) {
+  for (const std::string& model : model_names()) {
     SCOPED_TRACE(model);
     const CaseSpec spec = testing::rod_case({"l0=0.001", "model=" + model});
     constexpr std::int64_t kSteps = 3000;

@@ -15,6 +15,8 @@
 #include "src/core/ordered_sum.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/part_message.hpp"
+#include "src/solver/case_loader.hpp"
 #include "src/solver/setup.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
@@ -281,6 +283,91 @@ void check_corrected_gradient_passes() {
 TEST(Decomposition, CorrectedGradientPassesOnALocalStateGiveTheSerialBits) {
   check_corrected_gradient_passes<FiniteStrainModel>();
   check_corrected_gradient_passes<LinearElasticModel>();
+}
+
+// Rank 0 sends each follower its part as a stream of pieces: what arrives
+// is what was sent, every array bit for bit (the contact case: rigid plate,
+// load, walls, candidates; the fine rod: a message of several pieces).
+TEST(Decomposition, APartSentInPiecesArrivesWhole) {
+  const auto same = [](const auto& a, const auto& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+  };
+  for (const auto& [path, l0] : {std::pair{"cases/shock_rod_55kN.toml", "0.002"},
+                                 std::pair{"cases/shock_rod.toml", "0.000125"}}) {
+    SCOPED_TRACE(path);
+    Simulation sim(load_case(testing::source_path(path), {std::string("l0=") + l0}));
+    const SolverState& global = sim.state();
+    const Decomposition d = decompose(global.bonds, 3);
+    // The rank holding the plate (and its load), where there is one.
+    const int rank =
+        global.rigid_bodies.empty() ? 1 : d.owner_of(global.rigid_bodies.front().range.begin);
+    const LocalPart sent = local_part(global, d, rank);
+    std::vector<std::vector<double>> pieces;
+    pack_local_part(sent, [&](const std::vector<double>& piece) { pieces.push_back(piece); });
+    std::size_t next = 0;
+    const LocalPart got = unpack_local_part([&] { return pieces.at(next++); });
+    EXPECT_EQ(next, pieces.size()) << "every piece read";
+    std::size_t values = 0;
+    for (const auto& piece : pieces) values += piece.size();
+    if (std::string(l0) == "0.000125") EXPECT_GT(pieces.size(), 2u) << values << " values";
+    EXPECT_EQ(got.decomposition.starts, sent.decomposition.starts);
+    EXPECT_EQ(got.layout.global_of, sent.layout.global_of);
+    EXPECT_EQ(got.layout.owned.begin, sent.layout.owned.begin);
+    EXPECT_EQ(got.layout.owned_global.end, sent.layout.owned_global.end);
+    EXPECT_EQ(got.halo.peers, sent.halo.peers);
+    EXPECT_EQ(got.halo.send, sent.halo.send);
+    EXPECT_EQ(got.halo.receive, sent.halo.receive);
+    const ParticleStore &a = got.state.particles, &b = sent.state.particles;
+    for (const auto member : kParticleDoubleArrays) EXPECT_TRUE(same(a.*member, b.*member));
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.body, b.body);
+    EXPECT_EQ(a.material, b.material);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.elastic.begin, b.elastic.begin);
+    EXPECT_EQ(a.rigid.end, b.rigid.end);
+    const BondTable &ga = got.state.bonds, &gb = sent.state.bonds;
+    EXPECT_EQ(ga.offsets, gb.offsets);
+    EXPECT_EQ(ga.neighbor, gb.neighbor);
+    EXPECT_TRUE(same(ga.r0x, gb.r0x));
+    EXPECT_TRUE(same(ga.r0y, gb.r0y));
+    EXPECT_EQ(ga.hash(), gb.hash());
+    ASSERT_EQ(got.state.rigid_bodies.size(), sent.state.rigid_bodies.size());
+    for (std::size_t k = 0; k < got.state.rigid_bodies.size(); ++k) {
+      const RigidBody &x = got.state.rigid_bodies[k], &y = sent.state.rigid_bodies[k];
+      EXPECT_EQ(x.name, y.name);
+      EXPECT_EQ(x.range.begin, y.range.begin);
+      EXPECT_TRUE(same(std::vector<double>{x.xg0, x.xg, x.omega, x.orbital_inertia, x.mass_total},
+                       std::vector<double>{y.xg0, y.xg, y.omega, y.orbital_inertia, y.mass_total}));
+      EXPECT_TRUE(same(x.dx0, y.dx0));
+    }
+    ASSERT_EQ(got.state.loads.size(), sent.state.loads.size());
+    for (std::size_t k = 0; k < got.state.loads.size(); ++k) {
+      EXPECT_EQ(got.state.loads[k].name, sent.state.loads[k].name);
+      EXPECT_EQ(got.state.loads[k].first_step, sent.state.loads[k].first_step);
+      EXPECT_EQ(got.state.loads[k].fx, sent.state.loads[k].fx);
+    }
+    EXPECT_EQ(got.state.holds.size(), sent.state.holds.size());
+    const ContactState &ca = got.state.contact, &cb = sent.state.contact;
+    EXPECT_EQ(ca.candidates, cb.candidates);
+    EXPECT_EQ(ca.group, cb.group);
+    EXPECT_EQ(ca.first_moving, cb.first_moving);
+    EXPECT_EQ(ca.parameters.stiffness, cb.parameters.stiffness);
+    EXPECT_EQ(ca.force_x.size(), cb.force_x.size());
+    if (std::string(path) == "cases/shock_rod_55kN.toml") {
+      EXPECT_TRUE(ca.enabled());
+      EXPECT_FALSE(got.state.loads.empty() || got.state.rigid_bodies.empty())
+          << "the part holds the plate and its load";
+    }
+    // A message cut short is an error, not a partial part.
+    pieces.back().pop_back();
+    next = 0;
+    EXPECT_THROW(unpack_local_part([&]() -> std::vector<double> {
+                   if (next == pieces.size()) return {};
+                   return pieces.at(next++);
+                 }),
+                 std::logic_error);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,251 @@
+#include "src/distributed/part_message.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace mpsolid {
+
+namespace {
+// Values into pieces of at most kPartPieceValues, each sent when full.
+class Writer {
+ public:
+  explicit Writer(const std::function<void(const std::vector<double>&)>& send) : send_(send) {
+    out_.reserve(kPartPieceValues);
+  }
+  void put(double v) {
+    out_.push_back(v);
+    if (out_.size() == kPartPieceValues) {
+      send_(out_);
+      out_.clear();
+    }
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    put(static_cast<double>(v.size()));
+    for (const T& x : v) put(static_cast<double>(x));
+  }
+  void put(const std::string& s) { put(std::vector<char>(s.begin(), s.end())); }
+  void put(Range r) {
+    put(static_cast<double>(r.begin));
+    put(static_cast<double>(r.end));
+  }
+  // Sends the last piece (perhaps empty: the reader then knows the end).
+  void finish() { send_(out_); }
+
+ private:
+  const std::function<void(const std::vector<double>&)>& send_;
+  std::vector<double> out_;
+};
+
+// Values from the pieces, the next received when one is used up: full
+// pieces, then a short one (perhaps empty) that ends the message.
+class Reader {
+ public:
+  explicit Reader(const std::function<std::vector<double>()>& receive) : receive_(receive) {}
+  double get() {
+    while (at_ == in_.size()) next();
+    return in_[at_++];
+  }
+  template <class T>
+  T get_as() {
+    return static_cast<T>(get());
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    std::vector<T> v(get_as<std::size_t>());
+    for (T& x : v) x = static_cast<T>(get());
+    return v;
+  }
+  std::string get_string() {
+    const std::vector<char> chars = get_vector<char>();
+    return {chars.begin(), chars.end()};
+  }
+  Range get_range() {
+    const auto begin = get_as<std::size_t>();
+    return {begin, get_as<std::size_t>()};
+  }
+  // Every value read, and nothing left.
+  bool done() {
+    if (at_ != in_.size()) return false;
+    if (!last_) next();  // a full piece is followed by one more
+    return at_ == in_.size();
+  }
+
+ private:
+  void next() {
+    if (last_) throw std::logic_error("a rank's part: the message ended early");
+    in_ = receive_();
+    at_ = 0;
+    last_ = in_.size() < kPartPieceValues;
+  }
+  const std::function<std::vector<double>()>& receive_;
+  std::vector<double> in_;
+  std::size_t at_ = 0;
+  bool last_ = false;
+};
+
+void put_particles(Writer& w, const ParticleStore& p) {
+  for (const auto member : kParticleDoubleArrays) w.put(p.*member);
+  w.put(p.id);
+  w.put(p.body);
+  w.put(p.material);
+  std::vector<std::int32_t> kinds;
+  for (const Kind k : p.kind) kinds.push_back(static_cast<std::int32_t>(k));
+  w.put(kinds);
+}
+ParticleStore get_particles(Reader& r) {
+  ParticleStore p;
+  for (const auto member : kParticleDoubleArrays) p.*member = r.get_vector<double>();
+  p.id = r.get_vector<std::int32_t>();
+  p.body = r.get_vector<std::int32_t>();
+  p.material = r.get_vector<std::int32_t>();
+  for (const std::int32_t k : r.get_vector<std::int32_t>()) p.kind.push_back(static_cast<Kind>(k));
+  set_kind_ranges(p);
+  return p;
+}
+
+void put_body(Writer& w, const RigidBody& b) {
+  w.put(b.name);
+  w.put(b.range);
+  for (const double v : {b.xg0, b.yg0, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.orbital_inertia,
+                         b.spin_inertia, b.mass_total})
+    w.put(v);
+  w.put(b.dx0);
+  w.put(b.dy0);
+}
+RigidBody get_body(Reader& r) {
+  RigidBody b;
+  b.name = r.get_string();
+  b.range = r.get_range();
+  for (double* v : {&b.xg0, &b.yg0, &b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega,
+                    &b.orbital_inertia, &b.spin_inertia, &b.mass_total})
+    *v = r.get();
+  b.dx0 = r.get_vector<double>();
+  b.dy0 = r.get_vector<double>();
+  return b;
+}
+
+void put_load(Writer& w, const StepLoad& l) {
+  w.put(l.name);
+  w.put(l.range);
+  for (const double v :
+       {l.fx, l.fy, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on, l.cy_on})
+    w.put(v);
+}
+StepLoad get_load(Reader& r) {
+  StepLoad l;
+  l.name = r.get_string();
+  l.range = r.get_range();
+  l.fx = r.get();
+  l.fy = r.get();
+  l.first_step = r.get_as<std::int64_t>();
+  l.active = r.get() != 0.0;
+  l.cx_on = r.get();
+  l.cy_on = r.get();
+  return l;
+}
+
+template <class Item, class Put>
+void put_items(Writer& w, const std::vector<Item>& items, Put put) {
+  w.put(static_cast<double>(items.size()));
+  for (const Item& item : items) put(w, item);
+}
+template <class Item, class Get>
+std::vector<Item> get_items(Reader& r, Get get) {
+  std::vector<Item> items(r.get_as<std::size_t>());
+  for (Item& item : items) item = get(r);
+  return items;
+}
+}  // namespace
+
+LocalPart local_part(const SolverState& global, const Decomposition& d, int rank) {
+  LocalPart part;
+  part.decomposition = d;
+  const HaloPlan plan = plan_halo(global.bonds, d, rank);
+  part.layout = local_layout(d, plan, rank, global.contact.candidates);
+  part.halo = local_halo(plan, part.layout);
+  part.state = local_solver_state(global, part.layout);
+  return part;
+}
+
+void pack_local_part(const LocalPart& part,
+                     const std::function<void(const std::vector<double>&)>& send) {
+  Writer w(send);
+  w.put(part.decomposition.starts);
+  w.put(part.layout.global_of);
+  w.put(part.layout.owned);
+  w.put(part.layout.owned_global);
+  w.put(part.halo.peers);
+  put_items(w, part.halo.send, [](Writer& o, const auto& list) { o.put(list); });
+  put_items(w, part.halo.receive, [](Writer& o, const auto& list) { o.put(list); });
+  const SolverState& s = part.state;
+  put_particles(w, s.particles);
+  w.put(s.bonds.offsets);
+  w.put(s.bonds.neighbor);
+  for (const double v : {s.bonds.geometry.l0, s.bonds.geometry.re, s.bonds.geometry.volume})
+    w.put(v);
+  put_items(w, s.rigid_bodies, put_body);
+  put_items(w, s.loads, put_load);
+  put_items(w, s.holds, [](Writer& o, const HeldRange& h) {
+    o.put(h.range);
+    o.put(h.x ? 1.0 : 0.0);
+    o.put(h.y ? 1.0 : 0.0);
+  });
+  const ContactState& c = s.contact;
+  for (const double v : {c.parameters.distance, c.parameters.stiffness, c.parameters.skin,
+                         c.parameters.min_distance, static_cast<double>(c.first_moving)})
+    w.put(v);
+  w.put(c.candidates);
+  w.put(c.group);
+  w.put(static_cast<double>(s.step));
+  w.put(s.peak_work);
+  w.finish();
+}
+
+LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive) {
+  Reader r(receive);
+  LocalPart part;
+  part.decomposition.starts = r.get_vector<std::size_t>();
+  part.layout.global_of = r.get_vector<std::uint32_t>();
+  part.layout.owned = r.get_range();
+  part.layout.owned_global = r.get_range();
+  part.halo.peers = r.get_vector<int>();
+  const auto list = [](Reader& in) { return in.get_vector<std::uint32_t>(); };
+  part.halo.send = get_items<std::vector<std::uint32_t>>(r, list);
+  part.halo.receive = get_items<std::vector<std::uint32_t>>(r, list);
+  SolverState& s = part.state;
+  s.particles = get_particles(r);
+  auto offsets = r.get_vector<std::uint32_t>();
+  auto neighbor = r.get_vector<std::uint32_t>();
+  BondGeometry geometry;
+  geometry.l0 = r.get();
+  geometry.re = r.get();
+  geometry.volume = r.get();
+  s.bonds = make_bond_table(s.particles, std::move(offsets), std::move(neighbor), geometry);
+  s.rigid_bodies = get_items<RigidBody>(r, get_body);
+  s.loads = get_items<StepLoad>(r, get_load);
+  s.holds = get_items<HeldRange>(r, [](Reader& in) {
+    HeldRange h;
+    h.range = in.get_range();
+    h.x = in.get() != 0.0;
+    h.y = in.get() != 0.0;
+    return h;
+  });
+  ContactState& c = s.contact;
+  c.parameters.distance = r.get();
+  c.parameters.stiffness = r.get();
+  c.parameters.skin = r.get();
+  c.parameters.min_distance = r.get();
+  c.first_moving = r.get_as<std::size_t>();
+  c.candidates = r.get_vector<std::uint32_t>();
+  c.group = r.get_vector<std::int32_t>();
+  c.force_x.assign(c.size(), 0.0);
+  c.force_y.assign(c.size(), 0.0);
+  s.step = r.get_as<std::int64_t>();
+  s.peak_work = r.get();
+  if (!r.done()) throw std::logic_error("a rank's part: the message is longer than its part");
+  return part;
+}
+
+}  // namespace mpsolid
