@@ -248,13 +248,13 @@ class CorrectedGradientModel {
     return volume_ * density + 0.25 * hourglass;
   }
 
-  // J_i at or below the minimum: a collapsed neighbourhood (needs the strain
-  // pass at the current state).
+  // J_i at or below the minimum among the particles of `range`: a collapsed
+  // neighbourhood (needs the strain pass at the current state).
   IntegrityReport check_integrity(const ParticleStore&, const BondTable&,
-                                  const IntegrityLimits& limits) const {
+                                  const IntegrityLimits& limits, Range range) const {
     IntegrityReport r;
-    if (jacobian_.empty()) return r;
-    r.particle = index_of_min(jacobian_);
+    if (range.empty()) return r;
+    r.particle = index_of_min(jacobian_, range);
     r.neighbor = r.particle;
     r.value = jacobian_[r.particle];
     r.failed = !(r.value > limits.min_jacobian);

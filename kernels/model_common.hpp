@@ -38,5 +38,12 @@ inline std::size_t index_of_min(const std::vector<double>& values) {
     if (values[i] < values[best]) best = i;
   return best;
 }
+// The same among the indices of a non-empty `range`.
+inline std::size_t index_of_min(const std::vector<double>& values, Range range) {
+  std::size_t best = range.begin;
+  for (std::size_t i = range.begin + 1; i < range.end; ++i)
+    if (values[i] < values[best]) best = i;
+  return best;
+}
 
 }  // namespace mpsolid

@@ -40,8 +40,9 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
   cm.compute_forces(p, bonds, range);
   // The particle's share of the strain energy (needs a current strain pass).
   { cm.particle_strain_energy(cp, bonds, i) } -> std::same_as<double>;
-  // The model's measure of a broken state (an inverted bond, a collapsed J).
-  { cm.check_integrity(cp, bonds, limits) } -> std::same_as<IntegrityReport>;
+  // The model's measure of a broken state (an inverted bond, a collapsed J),
+  // the worst among the particles of `range`.
+  { cm.check_integrity(cp, bonds, limits, range) } -> std::same_as<IntegrityReport>;
 }
 &&(M::forces_read_positions || requires(const M cm, ParticleStore& p, const BondTable& bonds,
                                         Range range) { cm.compute_forces_block(p, bonds, range); });

@@ -158,13 +158,13 @@ class PaperModelT {
 
   // A bond turned inside out: r_ij . R(theta_ij) r0_ij <= 0. Reports the bond
   // with the smallest cosine between r_ij and R(theta_ij) r0_ij (the same
-  // from both ends). Reads the slots: needs the strain pass at the current
-  // state.
-  IntegrityReport check_integrity(const ParticleStore& p, const BondTable& bonds,
-                                  const IntegrityLimits&) const {
-    std::vector<double> worst(p.size());
-    std::vector<std::size_t> partner(p.size());
-    parallel_for(0, p.size(), [&](std::size_t i) {
+  // from both ends) among the rows of `range`. Reads the slots: needs the
+  // strain pass at the current state.
+  IntegrityReport check_integrity(const ParticleStore&, const BondTable& bonds,
+                                  const IntegrityLimits&, Range range) const {
+    std::vector<double> worst(range.size());
+    std::vector<std::size_t> partner(range.size());
+    parallel_for(range.begin, range.end, [&](std::size_t i) {
       double lowest = 1.0;
       std::size_t at = i;
       for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -178,14 +178,15 @@ class PaperModelT {
           at = bonds.neighbor[b];
         }
       }
-      worst[i] = lowest;
-      partner[i] = at;
+      worst[i - range.begin] = lowest;
+      partner[i - range.begin] = at;
     });
     IntegrityReport r;
-    if (p.size() == 0) return r;
-    r.particle = index_of_min(worst);
-    r.neighbor = partner[r.particle];
-    r.value = worst[r.particle];
+    if (range.empty()) return r;
+    const std::size_t k = index_of_min(worst);
+    r.particle = range.begin + k;
+    r.neighbor = partner[k];
+    r.value = worst[k];
     r.failed = !(r.value > 0.0);
     r.criterion = "bond turned inside out (r_ij . R(theta_ij) r0_ij <= 0)";
     return r;

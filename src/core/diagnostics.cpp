@@ -27,4 +27,11 @@ Diagnostics motion_diagnostics(const ParticleStore& p) {
   return d;
 }
 
+Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_energy) {
+  Diagnostics d = motion_diagnostics(s.particles);
+  d.strain_energy = strain_energy;
+  d.external_work = external_work(s.particles, s.loads);
+  return d;
+}
+
 }  // namespace mpsolid

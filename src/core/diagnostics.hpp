@@ -26,6 +26,10 @@ Diagnostics motion_diagnostics(const ParticleStore& p);
 template <class ParticleEnergy>
 Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy);
 
+// The same with the strain energy already summed (over MPI ranks, from the
+// ranks' chunk sums).
+Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_energy);
+
 }  // namespace mpsolid
 
 #include "src/core/ordered_sum.hpp"
@@ -33,11 +37,9 @@ Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_
 namespace mpsolid {
 template <class ParticleEnergy>
 Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy) {
-  Diagnostics d = motion_diagnostics(s.particles);
-  d.strain_energy = ordered_sum<1>(0, s.particles.size(), [&](std::size_t i) {
-    return std::array<double, 1>{particle_energy(i)};
-  })[0];
-  d.external_work = external_work(s.particles, s.loads);
-  return d;
+  return diagnostics_with_strain_energy(s,
+                                        ordered_sum<1>(0, s.particles.size(), [&](std::size_t i) {
+                                          return std::array<double, 1>{particle_energy(i)};
+                                        })[0]);
 }
 }  // namespace mpsolid

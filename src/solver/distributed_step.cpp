@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <variant>
 
+#include "src/core/ordered_sum.hpp"
+
 namespace mpsolid {
 
 Decomposition decompose_state(const SolverState& global, int ranks) {
@@ -41,6 +43,68 @@ void advance_rank_part(RankPart& part, const Communicator& world, double dt, std
                              part.halo_cost, part.times);
       },
       part.model);
+}
+
+void append_rank_fields(RankPart& part, const Communicator& world, const IntegrityLimits& limits,
+                        std::vector<double>& out) {
+  SolverState& s = part.local;
+  ParticleStore& p = s.particles;
+  const LocalLayout& layout = part.layout;
+  const Range owned = layout.owned;
+  std::visit(
+      [&](auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (kDecomposable<Model>) {
+          if constexpr (Model::uses_rotation) {
+            compute_half_angles(
+                p, {std::max(owned.begin, p.moving().begin), std::min(owned.end, p.moving().end)});
+            exchange_halo(world, part.halo,
+                          {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
+                           field_of(p.half_sin)},
+                          part.halo_cost);
+          } else {
+            exchange_halo(world, part.halo, {field_of(p.x), field_of(p.y)}, part.halo_cost);
+          }
+          decomposed_strain(model, s, layout, part.halo, world, part.halo_cost);
+          out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
+                     p.strain.begin() + static_cast<long>(owned.end));
+          out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
+                     p.pressure.begin() + static_cast<long>(owned.end));
+          // Owned ranges start at a chunk boundary: each chunk is a serial one.
+          for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk)
+            out.push_back(ordered_sum<1>(b, std::min(owned.end, b + kSumChunk), [&](std::size_t i) {
+              return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
+            })[0]);
+          const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
+          out.push_back(r.value);
+          out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));
+          out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.neighbor]));
+          out.push_back(r.failed ? 1.0 : 0.0);
+          out.push_back(static_cast<double>(r.criterion.size()));
+          for (const char c : r.criterion) out.push_back(static_cast<double>(c));
+        }
+      },
+      part.model);
+}
+
+void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
+                      ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields) {
+  for (std::vector<double>* field : {&global.strain, &global.pressure}) {
+    std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
+                field->begin() + static_cast<long>(owned.begin));
+    at += owned.size();
+  }
+  for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk) chunk_sums.push_back(in[at++]);
+  IntegrityReport r;
+  r.value = in[at++];
+  r.particle = static_cast<std::size_t>(in[at++]);
+  r.neighbor = static_cast<std::size_t>(in[at++]);
+  r.failed = in[at++] != 0.0;
+  r.criterion.resize(static_cast<std::size_t>(in[at++]));
+  for (char& c : r.criterion) c = static_cast<char>(in[at++]);
+  // The first smallest in storage order, as the serial scan finds it.
+  if (!owned.empty() && (fields.integrity.criterion.empty() || r.value < fields.integrity.value))
+    fields.integrity = r;
 }
 
 }  // namespace mpsolid

@@ -126,6 +126,28 @@ struct RankPart {
   RankTimes times;     // the passes' wall time, summed likewise
 };
 
+// The strain pass of the part's own particles at their current positions
+// (half angles, the halos, the strain pass), as the serial refresh_fields
+// gives them, then what rank 0's checks and outputs need of them, appended
+// to `out`: the owned particles' strain and pressure, their strain energy
+// summed in the ordered sums' whole chunks, and the model's integrity check
+// among them (value, particle and neighbour in global storage indices,
+// failed, the criterion's characters).
+void append_rank_fields(RankPart& part, const Communicator& world, const IntegrityLimits& limits,
+                        std::vector<double>& out);
+
+// What rank 0 reads of every rank's fields.
+struct RankFields {
+  double strain_energy = 0;   // the chunk sums added in chunk order: the serial bits
+  IntegrityReport integrity;  // the worst over the ranks (the first on ties)
+};
+// Reads one rank's fields (as append_rank_fields wrote them from `owned`,
+// the rank's global storage range) into the whole state's strain and
+// pressure, its chunk sums onto `chunk_sums`, and its integrity report
+// into `fields` when worse.
+void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
+                      ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields);
+
 // The cut of the set-up state `global` over `ranks`, rigid and loaded
 // bodies kept whole.
 Decomposition decompose_state(const SolverState& global, int ranks);

@@ -16,6 +16,7 @@ namespace mpsolid {
 struct RankedStepper::Parts {
   RankPart part;
   double dt = 0;
+  IntegrityLimits limits;
   Decomposition decomposition;  // rank 0: who owns what
 };
 
@@ -143,6 +144,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
     : parts_(std::make_unique<Parts>()) {
   const Communicator& world = Communicator::world();
   parts_->dt = spec.dt;
+  parts_->limits = {spec.stability.min_jacobian};
   parts_->decomposition = decompose_state(global, world.size());
   // Each follower's part, built and sent one at a time (rank 0 never holds
   // two); an empty message tells a follower the case was refused.
@@ -167,6 +169,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Par
   std::vector<double> first = world.receive(0);
   if (first.empty()) throw InputError("rank 0 refused the case");
   parts_->dt = spec.dt;
+  parts_->limits = {spec.stability.min_jacobian};
   bool given = false;
   parts_->part = make_rank_part(spec, unpack_local_part([&] {
                                   if (given) return world.receive(0);
@@ -177,10 +180,11 @@ RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Par
 
 RankedStepper::~RankedStepper() = default;
 
-void RankedStepper::advance(SolverState& global, std::int64_t steps) {
+RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, bool fields) {
   const Communicator& world = Communicator::world();
   const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
+  followers::send_command(steps, fields);
   for (int r = 1; r < world.size(); ++r) {
     std::vector<double> slice{static_cast<double>(global.step)};
     Slice::append(global, d.owned(r), slice);
@@ -192,34 +196,43 @@ void RankedStepper::advance(SolverState& global, std::int64_t steps) {
   std::size_t at = 0;
   Slice::read(p.local, p.layout.owned, mine, at);
   p.local.step = global.step;
-  const std::int64_t rebuilds = p.local.contact.rebuilds;
-  advance_rank_part(p, world, parts_->dt, steps);
-  mine.clear();
-  Slice::append(p.local, p.layout.owned, mine);
-  append_report(p, p.local.contact.rebuilds - rebuilds, mine);
+  mine = step_and_report(steps, fields);
   rank_times_.clear();
+  RankFields out;
+  std::vector<double> chunk_sums;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     at = 0;
     Slice::read(global, d.owned(r), back, at);
     rank_times_.push_back(read_report(back, at, r, global.contact));
+    at += kReportSize;
+    if (fields) read_rank_fields(back, at, d.owned(r), global.particles, chunk_sums, out);
   }
+  for (const double s : chunk_sums) out.strain_energy += s;  // in chunk order
   global.step = p.local.step;
+  return out;
 }
 
-void RankedStepper::follow(std::int64_t steps) {
+void RankedStepper::follow(std::int64_t steps, bool fields) {
   const Communicator& world = Communicator::world();
   RankPart& p = parts_->part;
   const std::vector<double> slice = world.receive(0);
   p.local.step = static_cast<std::int64_t>(slice.at(0));
   std::size_t at = 1;
   Slice::read(p.local, p.layout.owned, slice, at);
+  world.send(0, step_and_report(steps, fields));
+}
+
+std::vector<double> RankedStepper::step_and_report(std::int64_t steps, bool fields) {
+  const Communicator& world = Communicator::world();
+  RankPart& p = parts_->part;
   const std::int64_t rebuilds = p.local.contact.rebuilds;
-  advance_rank_part(p, world, parts_->dt, steps);
+  if (steps > 0) advance_rank_part(p, world, parts_->dt, steps);
   std::vector<double> back;
   Slice::append(p.local, p.layout.owned, back);
   append_report(p, p.local.contact.rebuilds - rebuilds, back);
-  world.send(0, back);
+  if (fields) append_rank_fields(p, world, parts_->limits, back);
+  return back;
 }
 
 namespace {
@@ -245,8 +258,9 @@ void send_case(const std::string& resolved_toml) {
   stage = Stage::stepping;
 }
 
-void send_steps(std::int64_t steps) {
-  Communicator::world().broadcast(steps);
+void send_command(std::int64_t steps, bool fields) {
+  std::int64_t command = 2 * steps + (fields ? 1 : 0);
+  Communicator::world().broadcast(command);
 }
 
 void release() {
@@ -278,11 +292,11 @@ int follow_rank_zero() {
       // Rank 0 refused the case and reports it; wait to be released.
     }
     for (;;) {
-      std::int64_t steps = 0;
-      world.broadcast(steps);
-      if (steps < 0) return stepper ? 0 : 2;
+      std::int64_t command = 0;
+      world.broadcast(command);
+      if (command < 0) return stepper ? 0 : 2;
       if (!stepper) throw std::logic_error("steps for a refused case");
-      stepper->follow(steps);
+      stepper->follow(command / 2, command % 2 == 1);
     }
   } catch (const InputError&) {
     return 2;  // the same error as rank 0's, which reports it

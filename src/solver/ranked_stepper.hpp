@@ -21,6 +21,7 @@
 #include "src/core/solver_state.hpp"
 #include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
+#include "src/solver/distributed_step.hpp"
 
 namespace mpsolid {
 
@@ -34,16 +35,23 @@ class RankedStepper {
   // the case.
   explicit RankedStepper(const CaseSpec& spec);
   ~RankedStepper();
-  // Rank 0: every rank's owned slice of `global` (its particles, bodies and
-  // loads) to it, `steps` decomposed steps on every rank, the slices back.
-  void advance(SolverState& global, std::int64_t steps);
+  // Rank 0: tells the followers, sends every rank its owned slice of
+  // `global` (its particles, bodies and loads), `steps` decomposed steps on
+  // every rank (0: none), the slices back. With `fields`, every rank then
+  // runs the strain pass at the current positions and rank 0 gets the
+  // whole state's strain and pressure, the strain energy and the integrity
+  // check, as a one-rank refresh would give them.
+  RankFields advance(SolverState& global, std::int64_t steps, bool fields);
   // A follower's side of advance.
-  void follow(std::int64_t steps);
+  void follow(std::int64_t steps, bool fields);
   // Rank 0: every rank's times, halo cost and memory so far, gathered after
   // each batch, for run.json.
   const std::vector<RankTimes>& rank_times() const { return rank_times_; }
 
  private:
+  // This rank's part of a batch: the steps, then its slice and report (and
+  // fields) for rank 0.
+  std::vector<double> step_and_report(std::int64_t steps, bool fields);
   struct Parts;
   std::unique_ptr<Parts> parts_;
   std::vector<RankTimes> rank_times_;
@@ -59,8 +67,8 @@ bool ranked_runs();
 namespace followers {
 // Sends the case (its resolved TOML) to the followers; once per run.
 void send_case(const std::string& resolved_toml);
-// Tells the followers to step `steps` steps.
-void send_steps(std::int64_t steps);
+// Tells the followers to step `steps` steps (and to report fields).
+void send_command(std::int64_t steps, bool fields);
 // Ends the followers: after the case, an end of steps; before it, an empty
 // case. Idempotent; rank 0's main calls it on every way out.
 void release();

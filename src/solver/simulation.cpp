@@ -23,7 +23,10 @@ Simulation::Simulation(const CaseSpec& spec) {
   spec_ = std::move(choice.spec);
   stable_step_ = choice.estimate;
   state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
-  model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
+  // Over ranks, rank 0 holds the whole state but no model: the ranks' own
+  // models give its fields, strain energy and integrity check.
+  if (!ranked)
+    model_ = make_model(spec_.model, state_.particles, state_.bonds, spec_.model_options);
   state_.contact = make_contact(spec_, state_);
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
@@ -41,15 +44,19 @@ Simulation::Simulation(const CaseSpec& spec) {
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
   if (ranked_) {
-    if (Communicator::world().rank() == 0) followers::send_steps(steps);
-    ranked_->advance(state_, steps);
+    ranked_->advance(state_, steps, false);
     return;
   }
   std::visit([&](auto& model) { advance_steps(model, state_, spec_.dt, timers_, steps); }, model_);
 }
 
 void Simulation::refresh_fields() {
-  std::visit([&](auto& model) { update_strain(model, state_, timers_); }, model_);
+  if (ranked_) {
+    auto t = timers_.time(Phase::strain);
+    ranked_fields_ = ranked_->advance(state_, 0, true);
+  } else {
+    std::visit([&](auto& model) { update_strain(model, state_, timers_); }, model_);
+  }
   if (state_.contact.enabled()) {
     auto t = timers_.time(Phase::contact);
     refresh_contact_list(state_.contact, state_.particles, state_.bonds);
@@ -58,13 +65,15 @@ void Simulation::refresh_fields() {
 
 Diagnostics Simulation::current_diagnostics() {
   auto t = timers_.time(Phase::diagnostics);
-  Diagnostics d = std::visit(
-      [&](const auto& model) {
-        return compute_diagnostics(state_, [&](std::size_t i) {
-          return model.particle_strain_energy(state_.particles, state_.bonds, i);
-        });
-      },
-      model_);
+  Diagnostics d =
+      ranked_ ? diagnostics_with_strain_energy(state_, ranked_fields_.strain_energy)
+              : std::visit(
+                    [&](const auto& model) {
+                      return compute_diagnostics(state_, [&](std::size_t i) {
+                        return model.particle_strain_energy(state_.particles, state_.bonds, i);
+                      });
+                    },
+                    model_);
   const ContactState& c = state_.contact;
   if (c.enabled()) {
     d.contact_energy = ordered_sum<1>(0, c.size(), [&](std::size_t a) {
@@ -88,11 +97,14 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   if (!v.ok) return v;
   refresh_fields();
   auto t = timers_.time(Phase::diagnostics);
-  const IntegrityReport integrity = std::visit(
-      [&](const auto& model) {
-        return model.check_integrity(p, state_.bonds, {spec_.stability.min_jacobian});
-      },
-      model_);
+  const IntegrityReport integrity =
+      ranked_ ? ranked_fields_.integrity
+              : std::visit(
+                    [&](const auto& model) {
+                      return model.check_integrity(p, state_.bonds, {spec_.stability.min_jacobian},
+                                                   p.all());
+                    },
+                    model_);
   if (integrity.failed) {
     v.ok = false;
     v.criterion = integrity.criterion;

@@ -67,6 +67,7 @@ class Simulation {
   double initial_energy_ = 0;
   double limit_speed_ = 0;
   std::shared_ptr<RankedStepper> ranked_;  // several MPI ranks only
+  RankFields ranked_fields_;               // ... and the ranks' last fields
 };
 
 }  // namespace mpsolid

@@ -8,7 +8,8 @@
 #  - contact (the colliding blocks) at 2 and 3 ranks, and a 2-rank
 #    checkpoint written mid-collision resumed at 1 and 3 ranks, give the
 #    serial bits;
-#  - a too soft contact stops a 2-rank run as it stops one rank (exit 3);
+#  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
+#    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
 #  - run.json records the ranks and, per rank, its particles, its passes'
@@ -121,6 +122,22 @@ mpi 2 soft run "$C_CASE" --set contact.stiffness=1e4 --out "$TMP/soft"
 [[ $rc -eq 3 ]] && grep -q "too close to (not bonded) particle 640" "$TMP/soft.err" &&
   ok "interpenetration at 2 ranks: exit 3, the pair named" ||
   { fail "interpenetration at 2 ranks: exit $rc"; sed 's/^/    /' "$TMP/soft.err" | head -n 4; }
+
+# A blow-up at 2 ranks (the paper model at 55.9 kN inverts a bond near
+# 0.69 ms): the one-rank run's exit code, diagnosis and outputs. Over ranks
+# rank 0 holds no model: the ranks' strain passes give its integrity check.
+BU_SETS=(--set model=paper --set l0=0.002 --set time.end=1.2e-3)
+"$BIN" run cases/shock_rod_55kN_short_wall.toml "${BU_SETS[@]}" --out "$TMP/bu_serial" \
+  --threads 1 >/dev/null 2>"$TMP/bu_serial.err" </dev/null
+serial_rc=$?
+mpi 2 bu2 run cases/shock_rod_55kN_short_wall.toml "${BU_SETS[@]}" --out "$TMP/bu2"
+if [[ $serial_rc -eq 3 && $rc -eq 3 ]] &&
+  diff <(grep "unstable:" "$TMP/bu_serial.err") <(grep "unstable:" "$TMP/bu2.err") >/dev/null; then
+  same "a blow-up at 2 ranks: exit 3, the same diagnosis and" "$TMP/bu2" "$TMP/bu_serial"
+else
+  fail "a blow-up at 2 ranks: exit $rc (serial $serial_rc), or another diagnosis:"
+  grep -h "unstable:" "$TMP/bu_serial.err" "$TMP/bu2.err" | cut -c1-200 | sed 's/^/    /'
+fi
 
 # The finite-strain model (three halos a step) at 2 ranks: the 55.9 kN rod.
 FS_SETS=(--set l0=0.002 --set time.end=2e-4 --set output.frame_interval=5e-5)
