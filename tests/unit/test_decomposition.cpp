@@ -166,6 +166,22 @@ TEST(Decomposition, LocalStateKeepsTheOwnedRowsAndTheGhostsBondsToThem) {
   }
 }
 
+// Calls check(layout, its particles, its bond table) for every rank's local
+// state of `global` cut for 2 and for 3 ranks.
+template <class Check>
+void for_each_rank_part(const SolverState& global, Check&& check) {
+  for (int ranks : {2, 3}) {
+    const Decomposition d = decompose(global.bonds, ranks);
+    for (int r = 0; r < ranks; ++r) {
+      SCOPED_TRACE(::testing::Message() << r << " of " << ranks);
+      const LocalLayout layout = local_layout(d, plan_halo(global.bonds, d, r), r);
+      ParticleStore local = local_particles(global.particles, layout);
+      const BondTable lb = local_bonds(global.bonds, local, layout);
+      check(layout, local, lb);
+    }
+  }
+}
+
 // The decomposed step's kernels, one rank at a time: with the ghosts'
 // positions and half angles (the first halo), the paper models' strain pass
 // gives the owned particles the serial pressure bit for bit; with the
@@ -185,35 +201,29 @@ TEST(Decomposition, PaperModelPassesOnALocalStateGiveTheSerialBits) {
           m.compute_forces(serial, global.bonds, serial.moving());
         },
         serial_model);
-    for (int ranks : {2, 3}) {
-      const Decomposition d = decompose(global.bonds, ranks);
-      for (int r = 0; r < ranks; ++r) {
-        SCOPED_TRACE(::testing::Message() << r << " of " << ranks);
-        const LocalLayout layout = local_layout(d, plan_halo(global.bonds, d, r), r);
-        ParticleStore local = local_particles(global.particles, layout);
-        const BondTable lb = local_bonds(global.bonds, local, layout);
-        AnyModel local_model = make_model(model, local, lb, sim.spec().model_options);
-        std::visit([&](auto& m) { m.compute_strain(local, lb, layout.owned); }, local_model);
-        for (std::size_t k = layout.owned.begin; k < layout.owned.end; ++k)
-          ASSERT_EQ(std::memcmp(&local.pressure[k], &serial.pressure[layout.global_of[k]],
-                                sizeof(double)),
-                    0)
-              << "pressure of global particle " << layout.global_of[k];
-        // The second halo: the ghosts' pressure from their owners.
-        for (std::size_t k = 0; k < layout.size(); ++k)
-          if (k < layout.owned.begin || k >= layout.owned.end)
-            local.pressure[k] = serial.pressure[layout.global_of[k]];
-        const Range moving_owned{std::max(layout.owned.begin, local.moving().begin),
-                                 std::min(layout.owned.end, local.moving().end)};
-        std::visit([&](auto& m) { m.compute_forces(local, lb, moving_owned); }, local_model);
-        for (std::size_t k = moving_owned.begin; k < moving_owned.end; ++k) {
-          const std::size_t g = layout.global_of[k];
-          ASSERT_EQ(std::memcmp(&local.fx[k], &serial.fx[g], sizeof(double)), 0) << g;
-          ASSERT_EQ(std::memcmp(&local.fy[k], &serial.fy[g], sizeof(double)), 0) << g;
-          ASSERT_EQ(std::memcmp(&local.torque[k], &serial.torque[g], sizeof(double)), 0) << g;
-        }
-      }
-    }
+    for_each_rank_part(
+        global, [&](const LocalLayout& layout, ParticleStore& local, const BondTable& lb) {
+          AnyModel local_model = make_model(model, local, lb, sim.spec().model_options);
+          std::visit([&](auto& m) { m.compute_strain(local, lb, layout.owned); }, local_model);
+          for (std::size_t k = layout.owned.begin; k < layout.owned.end; ++k)
+            ASSERT_EQ(std::memcmp(&local.pressure[k], &serial.pressure[layout.global_of[k]],
+                                  sizeof(double)),
+                      0)
+                << "pressure of global particle " << layout.global_of[k];
+          // The second halo: the ghosts' pressure from their owners.
+          for (std::size_t k = 0; k < layout.size(); ++k)
+            if (k < layout.owned.begin || k >= layout.owned.end)
+              local.pressure[k] = serial.pressure[layout.global_of[k]];
+          const Range moving_owned{std::max(layout.owned.begin, local.moving().begin),
+                                   std::min(layout.owned.end, local.moving().end)};
+          std::visit([&](auto& m) { m.compute_forces(local, lb, moving_owned); }, local_model);
+          for (std::size_t k = moving_owned.begin; k < moving_owned.end; ++k) {
+            const std::size_t g = layout.global_of[k];
+            ASSERT_EQ(std::memcmp(&local.fx[k], &serial.fx[g], sizeof(double)), 0) << g;
+            ASSERT_EQ(std::memcmp(&local.fy[k], &serial.fy[g], sizeof(double)), 0) << g;
+            ASSERT_EQ(std::memcmp(&local.torque[k], &serial.torque[g], sizeof(double)), 0) << g;
+          }
+        });
   }
 }
 
@@ -236,48 +246,42 @@ void check_corrected_gradient_passes() {
     auto& serial_model = std::get<Model>(serial_any);
     serial_model.compute_strain(serial, global.bonds, serial.all());
     serial_model.compute_forces(serial, global.bonds, serial.moving());
-    for (int ranks : {2, 3}) {
-      const Decomposition d = decompose(global.bonds, ranks);
-      for (int r = 0; r < ranks; ++r) {
-        SCOPED_TRACE(::testing::Message() << r << " of " << ranks);
-        const LocalLayout layout = local_layout(d, plan_halo(global.bonds, d, r), r);
-        ParticleStore local = local_particles(global.particles, layout);
-        const BondTable lb = local_bonds(global.bonds, local, layout);
-        AnyModel local_any = make_model(model, local, lb, sim.spec().model_options, layout.owned);
-        auto& m = std::get<Model>(local_any);
-        const auto is_ghost = [&](std::size_t k) {
-          return k < layout.owned.begin || k >= layout.owned.end;
-        };
-        // A halo of one field: the ghosts' values from the serial model's.
-        const auto halo = [&](ParticleField to, ParticleField from) {
-          for (std::size_t k = 0; k < layout.size(); ++k)
-            if (is_ghost(k))
-              for (std::size_t c = 0; c < to.width; ++c)
-                to.at(k, c) = from.at(layout.global_of[k], c);
-        };
-        const auto owned_match = [&](ParticleField got, ParticleField want, const char* what) {
-          for (std::size_t k = layout.owned.begin; k < layout.owned.end; ++k)
-            for (std::size_t c = 0; c < got.width; ++c)
-              ASSERT_EQ(
-                  std::memcmp(&got.at(k, c), &want.at(layout.global_of[k], c), sizeof(double)), 0)
-                  << what << " of global particle " << layout.global_of[k] << ", component " << c;
-        };
-        m.compute_deformation_gradient(local, lb, layout.owned);
-        owned_match(m.deformation_gradient_field(), serial_model.deformation_gradient_field(), "F");
-        halo(m.deformation_gradient_field(), serial_model.deformation_gradient_field());
-        m.compute_hourglass_stress(local, lb, layout.owned);
-        owned_match(m.stress_field(), serial_model.stress_field(), "(S + Q) A^-1");
-        halo(m.stress_field(), serial_model.stress_field());
-        const Range moving_owned{std::max(layout.owned.begin, local.moving().begin),
-                                 std::min(layout.owned.end, local.moving().end)};
-        m.compute_forces(local, lb, moving_owned);
-        for (std::size_t k = moving_owned.begin; k < moving_owned.end; ++k) {
-          const std::size_t g = layout.global_of[k];
-          ASSERT_EQ(std::memcmp(&local.fx[k], &serial.fx[g], sizeof(double)), 0) << g;
-          ASSERT_EQ(std::memcmp(&local.fy[k], &serial.fy[g], sizeof(double)), 0) << g;
-        }
+    for_each_rank_part(global, [&](const LocalLayout& layout, ParticleStore& local,
+                                   const BondTable& lb) {
+      AnyModel local_any = make_model(model, local, lb, sim.spec().model_options, layout.owned);
+      auto& m = std::get<Model>(local_any);
+      const auto is_ghost = [&](std::size_t k) {
+        return k < layout.owned.begin || k >= layout.owned.end;
+      };
+      // A halo of one field: the ghosts' values from the serial model's.
+      const auto halo = [&](ParticleField to, ParticleField from) {
+        for (std::size_t k = 0; k < layout.size(); ++k)
+          if (is_ghost(k))
+            for (std::size_t c = 0; c < to.width; ++c)
+              to.at(k, c) = from.at(layout.global_of[k], c);
+      };
+      const auto owned_match = [&](ParticleField got, ParticleField want, const char* what) {
+        for (std::size_t k = layout.owned.begin; k < layout.owned.end; ++k)
+          for (std::size_t c = 0; c < got.width; ++c)
+            ASSERT_EQ(std::memcmp(&got.at(k, c), &want.at(layout.global_of[k], c), sizeof(double)),
+                      0)
+                << what << " of global particle " << layout.global_of[k] << ", component " << c;
+      };
+      m.compute_deformation_gradient(local, lb, layout.owned);
+      owned_match(m.deformation_gradient_field(), serial_model.deformation_gradient_field(), "F");
+      halo(m.deformation_gradient_field(), serial_model.deformation_gradient_field());
+      m.compute_hourglass_stress(local, lb, layout.owned);
+      owned_match(m.stress_field(), serial_model.stress_field(), "(S + Q) A^-1");
+      halo(m.stress_field(), serial_model.stress_field());
+      const Range moving_owned{std::max(layout.owned.begin, local.moving().begin),
+                               std::min(layout.owned.end, local.moving().end)};
+      m.compute_forces(local, lb, moving_owned);
+      for (std::size_t k = moving_owned.begin; k < moving_owned.end; ++k) {
+        const std::size_t g = layout.global_of[k];
+        ASSERT_EQ(std::memcmp(&local.fx[k], &serial.fx[g], sizeof(double)), 0) << g;
+        ASSERT_EQ(std::memcmp(&local.fy[k], &serial.fy[g], sizeof(double)), 0) << g;
       }
-    }
+    });
   }
 }
 TEST(Decomposition, CorrectedGradientPassesOnALocalStateGiveTheSerialBits) {
