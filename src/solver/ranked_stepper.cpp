@@ -100,15 +100,15 @@ class Slice {
 
 // After a batch, what a rank reports besides its slice: the first step its
 // contact pass found a pair too close (-1: none), its list rebuilds in the
-// batch, and its times so far.
-constexpr std::size_t kReportSize = 11;
+// batch, its times and halo cost so far, its particles and its peak memory.
+constexpr std::size_t kReportSize = 10;
 void append_report(const RankPart& p, std::int64_t rebuilds, std::vector<double>& out) {
   const RankTimes& t = p.times;
   for (const double v :
        {static_cast<double>(p.local.contact.too_close.step.load()), static_cast<double>(rebuilds),
         t.contact_seconds, t.strain_seconds, t.forces_seconds, p.halo_cost.seconds,
         p.halo_cost.bytes_sent, static_cast<double>(p.layout.owned.size()),
-        static_cast<double>(p.layout.size() - p.layout.owned.size()), peak_resident_bytes(), 0.0})
+        static_cast<double>(p.layout.size() - p.layout.owned.size()), peak_resident_bytes()})
     out.push_back(v);
 }
 // Reads a rank's report into the whole state's contact (the first step any
@@ -131,6 +131,9 @@ RankTimes read_report(const std::vector<double>& in, std::size_t at, int rank,
   t.peak_memory_bytes = in[at + 9];
   return t;
 }
+
+// A follower's part was not sent: rank 0 refused the case (and reports it).
+struct CaseRefused {};
 
 InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
   return InputError(
@@ -167,7 +170,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
 RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Parts>()) {
   const Communicator& world = Communicator::world();
   std::vector<double> first = world.receive(0);
-  if (first.empty()) throw InputError("rank 0 refused the case");
+  if (first.empty()) throw CaseRefused{};
   parts_->dt = spec.dt;
   parts_->limits = {spec.stability.min_jacobian};
   bool given = false;
@@ -288,8 +291,13 @@ int follow_rank_zero() {
     std::unique_ptr<RankedStepper> stepper;
     try {
       stepper = std::make_unique<RankedStepper>(spec);
-    } catch (const InputError&) {
+    } catch (const CaseRefused&) {
       // Rank 0 refused the case and reports it; wait to be released.
+    } catch (const InputError& e) {
+      // This rank's own part is bad input (its model checks its particles,
+      // which rank 0 never does): only this rank knows, so it ends the job.
+      fmt::print(stderr, "mpsolid: error: {}\n", e.what());
+      world.abort(2);
     }
     for (;;) {
       std::int64_t command = 0;

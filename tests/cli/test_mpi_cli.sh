@@ -12,6 +12,7 @@
 #    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
+#    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
 #    times, and its halo time and bytes.
 #
@@ -161,6 +162,22 @@ messages=$(grep -c "contact.distance.*0.5" "$TMP/bad.err")
   { fail "a bad case at 2 ranks: $messages messages:"; sed 's/^/    /' "$TMP/bad.err"; }
 [[ ! -e "$TMP/bad" ]] && ok "a bad case at 2 ranks: nothing written" ||
   fail "a bad case at 2 ranks: $TMP/bad was created"
+
+# Bad input only a follower sees: a body one row thick that its own part
+# holds (finite_strain's A^-1 is undefined there; rank 0 builds no model).
+# The follower ends the job: exit 2, the one-rank run's message, nothing
+# written.
+sed 's/^model = "paper"/model = "finite_strain"/' "$CASE" >"$TMP/thin.toml"
+printf '\n[bodies.thin]\nkind = "elastic"\nmaterial = "rubber"\nx = [0.2, 0.3]\ny = [0.0, 0.002]\n' \
+  >>"$TMP/thin.toml"
+mpi 2 thin run "$TMP/thin.toml" --set time.end=1e-6 --out "$TMP/thin"
+if [[ $rc -eq 2 ]] && grep -q "has no neighbours off one line" "$TMP/thin.err" &&
+  [[ ! -e "$TMP/thin" ]]; then
+  ok "bad input on a follower: exit 2, its message, nothing written"
+else
+  fail "bad input on a follower: exit $rc"
+  sed 's/^/    /' "$TMP/thin.err" | head -n 4
+fi
 
 if [[ $failures -gt 0 ]]; then
   echo "test_mpi_cli: $failures check(s) FAILED"
