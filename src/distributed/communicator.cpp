@@ -96,14 +96,6 @@ void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
 }
 
-void Communicator::broadcast(std::vector<double>& values) const {
-  if (size_ == 1) return;
-  std::int64_t count = static_cast<std::int64_t>(values.size());
-  broadcast(count);
-  values.resize(static_cast<std::size_t>(count));
-  MPI_Bcast(values.data(), static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-}
-
 void Communicator::broadcast(std::int64_t& value) const {
   if (size_ > 1) MPI_Bcast(&value, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
 }
@@ -177,7 +169,6 @@ std::vector<double> Communicator::receive(int) const {
   throw std::invalid_argument("receive: a one-rank run has no other rank");
 }
 void Communicator::barrier() const {}
-void Communicator::broadcast(std::vector<double>&) const {}
 void Communicator::broadcast(std::int64_t&) const {}
 void Communicator::broadcast(std::string&) const {}
 void Communicator::abort(int code) const {

@@ -35,8 +35,7 @@ class Communicator {
   void send(int to, const std::vector<double>& values) const;
   std::vector<double> receive(int from) const;
   void barrier() const;
-  // Rank 0's values, on every rank (`values` is resized on the others).
-  void broadcast(std::vector<double>& values) const;
+  // Rank 0's value, on every rank (the text is resized on the others).
   void broadcast(std::int64_t& value) const;
   void broadcast(std::string& text) const;
   // Ends every rank of the run with `code` (a failure on one rank must not

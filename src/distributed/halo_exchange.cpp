@@ -1,7 +1,5 @@
 #include "src/distributed/halo_exchange.hpp"
 
-#include <chrono>
-
 namespace mpsolid {
 
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
@@ -20,7 +18,7 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
 
 void exchange_halo(const Communicator& world, LocalHalo& halo,
                    std::initializer_list<ParticleField> fields, HaloCost& cost) {
-  const auto start = std::chrono::steady_clock::now();
+  CommunicationTime t(cost);
   std::size_t width = 0;
   for (const ParticleField& f : fields) width += f.width;
   const std::size_t n = halo.peers.size();
@@ -42,7 +40,6 @@ void exchange_halo(const Communicator& world, LocalHalo& halo,
       for (const ParticleField& f : fields)
         for (std::size_t c = 0; c < f.width; ++c) f.at(i, c) = *in++;
   }
-  cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace mpsolid

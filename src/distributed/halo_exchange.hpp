@@ -3,6 +3,7 @@
 // particles it sends and where what it receives goes, with the message
 // buffers kept from step to step, and the exchange that gives the ghosts
 // their owners' values of any per-particle fields.
+#include <chrono>
 #include <cstdint>
 #include <initializer_list>
 #include <vector>
@@ -26,6 +27,23 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
 struct HaloCost {
   double seconds = 0;
   double bytes_sent = 0;
+};
+
+// Adds the wall time of its scope (communication) to a halo cost.
+class CommunicationTime {
+ public:
+  explicit CommunicationTime(HaloCost& cost)
+      : cost_(cost), start_(std::chrono::steady_clock::now()) {}
+  ~CommunicationTime() {
+    cost_.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  CommunicationTime(const CommunicationTime&) = delete;
+  CommunicationTime& operator=(const CommunicationTime&) = delete;
+
+ private:
+  HaloCost& cost_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 // Gives the ghosts their owners' values of the given fields. Collective

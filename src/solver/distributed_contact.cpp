@@ -1,7 +1,6 @@
 #include "src/solver/distributed_contact.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <stdexcept>
 
 #include "kernels/contact_force.hpp"
@@ -10,21 +9,6 @@
 namespace mpsolid {
 
 namespace {
-// Adds the wall time of its scope to a halo cost.
-class CommunicationTime {
- public:
-  explicit CommunicationTime(HaloCost& cost)
-      : cost_(cost), start_(std::chrono::steady_clock::now()) {}
-  ~CommunicationTime() {
-    cost_.seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  HaloCost& cost_;
-  std::chrono::steady_clock::time_point start_;
-};
-
 // Every moving candidate's position from its owner: the owned moving
 // candidates of the ranks, gathered in rank order, are all of them in
 // candidate order (ranks own ascending storage ranges).
