@@ -59,6 +59,20 @@ void time_pass(double& seconds, const HaloCost& cost, Pass&& pass) {
              (cost.seconds - in_halos);
 }
 
+// The first halo of a step: positions (and, with rotation, the rotations
+// and half angles).
+template <bool Rotation>
+void exchange_positions(const Communicator& world, LocalHalo& halo, ParticleStore& p,
+                        HaloCost& cost) {
+  if constexpr (Rotation)
+    exchange_halo(world, halo,
+                  {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
+                   field_of(p.half_sin)},
+                  cost);
+  else
+    exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
+}
+
 // The strain pass of the owned particles, with the halos that leave every
 // ghost's force-pass inputs at their owners' values.
 template <class Model>
@@ -91,13 +105,7 @@ void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout,
   if constexpr (rot) compute_half_angles(p, moving_owned);
   BodyKicks kicks(s.rigid_bodies.size());
   for (std::int64_t k = 0; k < steps; ++k, ++s.step) {
-    if constexpr (rot)
-      exchange_halo(world, halo,
-                    {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
-                     field_of(p.half_sin)},
-                    cost);
-    else
-      exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
+    exchange_positions<rot>(world, halo, p, cost);
     if (s.contact.enabled())
       time_pass(times.contact_seconds, cost,
                 [&] { rank_contact_pass(contact, s, layout, world, s.step, cost); });
