@@ -55,16 +55,10 @@ void append_rank_fields(RankPart& part, const Communicator& world, const Integri
       [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
         if constexpr (kDecomposable<Model>) {
-          if constexpr (Model::uses_rotation) {
+          if constexpr (Model::uses_rotation)
             compute_half_angles(
                 p, {std::max(owned.begin, p.moving().begin), std::min(owned.end, p.moving().end)});
-            exchange_halo(world, part.halo,
-                          {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
-                           field_of(p.half_sin)},
-                          part.halo_cost);
-          } else {
-            exchange_halo(world, part.halo, {field_of(p.x), field_of(p.y)}, part.halo_cost);
-          }
+          exchange_positions<Model::uses_rotation>(world, part.halo, p, part.halo_cost);
           decomposed_strain(model, s, layout, part.halo, world, part.halo_cost);
           out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
                      p.strain.begin() + static_cast<long>(owned.end));
