@@ -10,6 +10,7 @@
 #include <limits>
 #include <new>
 #include <optional>
+#include <utility>
 
 #include "src/app/memory_check.hpp"
 #include "src/app/progress.hpp"
@@ -138,11 +139,14 @@ struct Cadences {
 // its first frame and checkpoint. Fills the outcome (and diagnosis) in `facts`.
 void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
                  bool fresh) {
-  const Cadences every(sim.spec(), sim.particles().size());
+  // Reads go through `view`: a change through `sim` would send the ranks
+  // their slices again before the next step.
+  const Simulation& view = sim;
+  const Cadences every(sim.spec(), view.particles().size());
   // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(sim.state(), sim.spec(), d);
+    outputs.write_frame(view.state(), sim.spec(), d);
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {
@@ -156,7 +160,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     write_frame(sim.diagnostics());
     checkpoint();
   }
-  StateSnapshot last_good = StateSnapshot::capture(sim.state());
+  StateSnapshot last_good = StateSnapshot::capture(view.state());
   facts.outcome = Outcome::completed;
   ThreadGovernor governor(facts.threads, options.adaptive_threads);
   while (sim.step() < every.total) {
@@ -184,12 +188,12 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       if (sim.step() != outputs.last_frame_step()) write_frame(sim.diagnostics());
       break;
     }
-    last_good = StateSnapshot::capture(sim.state());
+    last_good = StateSnapshot::capture(view.state());
     const std::int64_t step = sim.step();
     if (step == every.total || step % every.frame == 0) write_frame(d);
     if (step % every.history == 0) {
       auto t = sim.timers().time(Phase::output);
-      outputs.write_history(sim.state(), sim.spec(), d);
+      outputs.write_history(view.state(), sim.spec(), d);
     }
     if (step == every.total) break;
     if (every.checkpoint > 0 && step % every.checkpoint == 0 &&
@@ -348,7 +352,7 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {
-    RunFolder outputs(options.out_dir, sim.state(), sim.spec());
+    RunFolder outputs(options.out_dir, std::as_const(sim).state(), sim.spec());
     lock->record_owner();
     return run_loop(sim, outputs, facts, options, true);
   });

@@ -67,6 +67,9 @@ struct RankTimes {
   double halo_bytes_sent = 0;
   double owned = 0, ghosts = 0;  // particles owned, and held for its passes
   double peak_memory_bytes = 0;  // the rank's peak resident memory
+  // The rank's slices of the state sent from and brought back to rank 0
+  // (rank 0's own: copied), and their bytes.
+  double slice_moves = 0, slice_bytes = 0;
 };
 
 }  // namespace mpsolid

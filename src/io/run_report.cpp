@@ -65,7 +65,9 @@ Json thread_facts_json(const RunFacts& facts) {
                        {"forces_seconds", t.forces_seconds},
                        {"halo_seconds", t.halo_seconds},
                        {"halo_bytes_sent", t.halo_bytes_sent},
-                       {"peak_memory_bytes", t.peak_memory_bytes}});
+                       {"peak_memory_bytes", t.peak_memory_bytes},
+                       {"slice_moves", static_cast<std::int64_t>(t.slice_moves)},
+                       {"slice_bytes", t.slice_bytes}});
     }
     facts_json["per_rank"] = ranks;
   }

@@ -17,7 +17,8 @@ struct RankedStepper::Parts {
   RankPart part;
   double dt = 0;
   IntegrityLimits limits;
-  Decomposition decomposition;  // rank 0: who owns what
+  Decomposition decomposition;         // rank 0: who owns what
+  std::int64_t rebuilds_reported = 0;  // this rank's contact list rebuilds
 };
 
 namespace {
@@ -98,9 +99,9 @@ class Slice {
   }
 };
 
-// After a batch, what a rank reports besides its slice: the first step its
-// contact pass found a pair too close (-1: none), its list rebuilds in the
-// batch, its times and halo cost so far, its particles and its peak memory.
+// With its slice, what a rank reports: the first step its contact pass
+// found a pair too close (-1: none), its list rebuilds since its last
+// report, its times and halo cost so far, its particles and its peak memory.
 constexpr std::size_t kReportSize = 10;
 void append_report(const RankPart& p, std::int64_t rebuilds, std::vector<double>& out) {
   const RankTimes& t = p.times;
@@ -162,6 +163,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
   }
   try {
     parts_->part = make_rank_part(spec, local_part(global, parts_->decomposition, 0));
+    parts_->rebuilds_reported = parts_->part.local.contact.rebuilds;
   } catch (const std::invalid_argument& e) {
     throw refusal(spec, e.what(), world.size());
   }
@@ -179,62 +181,92 @@ RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Par
                                   given = true;
                                   return std::move(first);
                                 }));
+  parts_->rebuilds_reported = parts_->part.local.contact.rebuilds;
 }
 
 RankedStepper::~RankedStepper() = default;
 
-RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, bool fields) {
+RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, Exchange how) {
   const Communicator& world = Communicator::world();
   const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
-  followers::send_command(steps, fields);
-  for (int r = 1; r < world.size(); ++r) {
-    std::vector<double> slice{static_cast<double>(global.step)};
-    Slice::append(global, d.owned(r), slice);
-    world.send(r, slice);
+  followers::send_command(steps, how);
+  if (how.send_slices) {
+    for (int r = 1; r < world.size(); ++r) {
+      std::vector<double> slice{static_cast<double>(global.step)};
+      Slice::append(global, d.owned(r), slice);
+      world.send(r, slice);
+      count_slice_move(r, slice.size() - 1);
+    }
+    // Rank 0's own slice, through the same message form.
+    std::vector<double> mine;
+    Slice::append(global, d.owned(0), mine);
+    count_slice_move(0, mine.size());
+    std::size_t at = 0;
+    Slice::read(p.local, p.layout.owned, mine, at);
+    p.local.step = global.step;
   }
-  // Rank 0's own slice, through the same message form.
-  std::vector<double> mine;
-  Slice::append(global, d.owned(0), mine);
-  std::size_t at = 0;
-  Slice::read(p.local, p.layout.owned, mine, at);
-  p.local.step = global.step;
-  mine = step_and_report(steps, fields);
-  rank_times_.clear();
+  std::vector<double> mine = step_and_report(steps, how);
+  global.step = p.local.step;
   RankFields out;
+  if (!how.bring_back && !how.fields) return out;
+  if (how.bring_back) rank_times_.clear();
   std::vector<double> chunk_sums;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
-    at = 0;
-    Slice::read(global, d.owned(r), back, at);
-    rank_times_.push_back(read_report(back, at, r, global.contact));
-    at += kReportSize;
-    if (fields) read_rank_fields(back, at, d.owned(r), global.particles, chunk_sums, out);
+    std::size_t at = 0;
+    if (how.bring_back) {
+      Slice::read(global, d.owned(r), back, at);
+      count_slice_move(r, at);
+      rank_times_.push_back(read_report(back, at, r, global.contact));
+      at += kReportSize;
+    }
+    if (how.fields) read_rank_fields(back, at, d.owned(r), global.particles, chunk_sums, out);
   }
   for (const double s : chunk_sums) out.strain_energy += s;  // in chunk order
-  global.step = p.local.step;
   return out;
 }
 
-void RankedStepper::follow(std::int64_t steps, bool fields) {
-  const Communicator& world = Communicator::world();
-  RankPart& p = parts_->part;
-  const std::vector<double> slice = world.receive(0);
-  p.local.step = static_cast<std::int64_t>(slice.at(0));
-  std::size_t at = 1;
-  Slice::read(p.local, p.layout.owned, slice, at);
-  world.send(0, step_and_report(steps, fields));
+void RankedStepper::count_slice_move(int r, std::size_t doubles) {
+  slice_moves_.resize(static_cast<std::size_t>(Communicator::world().size()));
+  SliceMoves& m = slice_moves_[static_cast<std::size_t>(r)];
+  m.moves += 1;
+  m.bytes += static_cast<double>(doubles * sizeof(double));
 }
 
-std::vector<double> RankedStepper::step_and_report(std::int64_t steps, bool fields) {
+std::vector<RankTimes> RankedStepper::rank_times() const {
+  std::vector<RankTimes> times = rank_times_;
+  for (std::size_t r = 0; r < times.size() && r < slice_moves_.size(); ++r) {
+    times[r].slice_moves = slice_moves_[r].moves;
+    times[r].slice_bytes = slice_moves_[r].bytes;
+  }
+  return times;
+}
+
+void RankedStepper::follow(std::int64_t steps, Exchange how) {
   const Communicator& world = Communicator::world();
   RankPart& p = parts_->part;
-  const std::int64_t rebuilds = p.local.contact.rebuilds;
+  if (how.send_slices) {
+    const std::vector<double> slice = world.receive(0);
+    p.local.step = static_cast<std::int64_t>(slice.at(0));
+    std::size_t at = 1;
+    Slice::read(p.local, p.layout.owned, slice, at);
+  }
+  const std::vector<double> back = step_and_report(steps, how);
+  if (how.bring_back || how.fields) world.send(0, back);
+}
+
+std::vector<double> RankedStepper::step_and_report(std::int64_t steps, Exchange how) {
+  const Communicator& world = Communicator::world();
+  RankPart& p = parts_->part;
   if (steps > 0) advance_rank_part(p, world, parts_->dt, steps);
   std::vector<double> back;
-  Slice::append(p.local, p.layout.owned, back);
-  append_report(p, p.local.contact.rebuilds - rebuilds, back);
-  if (fields) append_rank_fields(p, world, parts_->limits, back);
+  if (how.bring_back) {
+    Slice::append(p.local, p.layout.owned, back);
+    append_report(p, p.local.contact.rebuilds - parts_->rebuilds_reported, back);
+    parts_->rebuilds_reported = p.local.contact.rebuilds;
+  }
+  if (how.fields) append_rank_fields(p, world, parts_->limits, back);
   return back;
 }
 
@@ -253,6 +285,21 @@ namespace followers {
 namespace {
 enum class Stage { before_case, stepping, released };
 Stage stage = Stage::before_case;
+
+// A command is the steps and the exchange's flags in one number (-1: the
+// end).
+constexpr std::int64_t kExchangeFlags = 8;
+std::int64_t command_of(std::int64_t steps, RankedStepper::Exchange how) {
+  return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
+         (how.fields ? 4 : 0);
+}
+std::int64_t steps_of(std::int64_t command) {
+  return command / kExchangeFlags;
+}
+RankedStepper::Exchange exchange_of(std::int64_t command) {
+  const std::int64_t flags = command % kExchangeFlags;
+  return {(flags & 1) != 0, (flags & 2) != 0, (flags & 4) != 0};
+}
 }  // namespace
 
 void send_case(const std::string& resolved_toml) {
@@ -261,8 +308,8 @@ void send_case(const std::string& resolved_toml) {
   stage = Stage::stepping;
 }
 
-void send_command(std::int64_t steps, bool fields) {
-  std::int64_t command = 2 * steps + (fields ? 1 : 0);
+void send_command(std::int64_t steps, RankedStepper::Exchange how) {
+  std::int64_t command = command_of(steps, how);
   Communicator::world().broadcast(command);
 }
 
@@ -304,7 +351,7 @@ int follow_rank_zero() {
       world.broadcast(command);
       if (command < 0) return stepper ? 0 : 2;
       if (!stepper) throw std::logic_error("steps for a refused case");
-      stepper->follow(command / 2, command % 2 == 1);
+      stepper->follow(followers::steps_of(command), followers::exchange_of(command));
     }
   } catch (const InputError&) {
     return 2;  // the same error as rank 0's, which reports it

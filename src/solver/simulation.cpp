@@ -44,7 +44,9 @@ Simulation::Simulation(const CaseSpec& spec) {
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
   if (ranked_) {
-    ranked_->advance(state_, steps, false);
+    ranked_->advance(state_, steps, {.send_slices = ranks_behind_});
+    ranks_behind_ = false;
+    ranks_ahead_ = ranks_ahead_ || steps > 0;
     return;
   }
   std::visit([&](auto& model) { advance_steps(model, state_, spec_.dt, timers_, steps); }, model_);
@@ -53,7 +55,9 @@ void Simulation::advance(std::int64_t steps) {
 void Simulation::refresh_fields() {
   if (ranked_) {
     auto t = timers_.time(Phase::strain);
-    ranked_fields_ = ranked_->advance(state_, 0, true);
+    ranked_fields_ = ranked_->advance(
+        state_, 0, {.send_slices = ranks_behind_, .bring_back = ranks_ahead_, .fields = true});
+    ranks_behind_ = ranks_ahead_ = false;
   } else {
     std::visit([&](auto& model) { update_strain(model, state_, timers_); }, model_);
   }
@@ -61,6 +65,12 @@ void Simulation::refresh_fields() {
     auto t = timers_.time(Phase::contact);
     refresh_contact_list(state_.contact, state_.particles, state_.bonds);
   }
+}
+
+void Simulation::bring_back() const {
+  if (!ranks_ahead_) return;
+  ranked_->advance(state_, 0, {.bring_back = true});
+  ranks_ahead_ = false;
 }
 
 Diagnostics Simulation::current_diagnostics() {
@@ -92,6 +102,7 @@ Diagnostics Simulation::diagnostics() {
 }
 
 StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
+  bring_back();
   const ParticleStore& p = state_.particles;
   StabilityVerdict v = check_finite(p);
   if (!v.ok) return v;

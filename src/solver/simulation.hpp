@@ -23,7 +23,8 @@ class Simulation {
   explicit Simulation(const CaseSpec& spec);
 
   // Advances `steps` time steps (no output); over several MPI ranks, every
-  // rank steps its own particles (rank 0 tells the followers to).
+  // rank steps its own particles (rank 0 tells the followers to), and they
+  // stay there until the state is next read.
   void advance(std::int64_t steps);
   // Recomputes the position-dependent fields (half angles, strain, pressure)
   // for the current state, as outputs and diagnostics need.
@@ -42,10 +43,20 @@ class Simulation {
   std::int64_t step() const { return state_.step; }
 
   const CaseSpec& spec() const { return spec_; }
-  SolverState& state() { return state_; }
-  const SolverState& state() const { return state_; }
-  const ParticleStore& particles() const { return state_.particles; }
-  ParticleStore& particles() { return state_.particles; }
+  // The state. Over several MPI ranks, the particles stepped since the last
+  // read come back to rank 0 first; after a change through the non-const
+  // overloads, the next step sends the ranks their slices again.
+  const SolverState& state() const {
+    bring_back();
+    return state_;
+  }
+  SolverState& state() {
+    bring_back();
+    ranks_behind_ = ranked_ != nullptr;
+    return state_;
+  }
+  const ParticleStore& particles() const { return state().particles; }
+  ParticleStore& particles() { return state().particles; }
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
@@ -58,16 +69,23 @@ class Simulation {
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
+  // Over ranks: the particles stepped since rank 0's copy was last brought
+  // back come back to it.
+  void bring_back() const;
 
   CaseSpec spec_;
   PhaseTimers timers_;
-  SolverState state_;
+  // Over ranks, rank 0's copy of the state: a cache of the ranks' particles,
+  // brought back on a read (so a const read may fill it).
+  mutable SolverState state_;
   AnyModel model_;
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
   std::shared_ptr<RankedStepper> ranked_;  // several MPI ranks only
   RankFields ranked_fields_;               // ... and the ranks' last fields
+  mutable bool ranks_ahead_ = false;       // stepped since state_ was brought back
+  bool ranks_behind_ = false;              // state_ may have changed since they got it
 };
 
 }  // namespace mpsolid

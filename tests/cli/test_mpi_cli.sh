@@ -11,10 +11,14 @@
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
 #    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
+#  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
+#    resumes at 3 ranks to the serial bits;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
 #    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
-#    times, and its halo time and bytes.
+#    times, and its halo time and bytes;
+#  - the particles stay on their ranks between batches: their slices come
+#    back to rank 0 only when it reads the state (run.json's slice_moves).
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -76,6 +80,28 @@ print(r["ranks"], "with an entry per rank" if ok else "WITHOUT a whole entry per
     fail "$ranks ranks: run.json says ranks = $recorded"
 done
 
+# The particles stay on their ranks between batches: with checks and history
+# rows every 5,000 steps, the 2,000-step batches bring the slices back to
+# rank 0 only at those 4 reads, and never send them out again.
+SPARSE=(--set stability.check_interval=5000 --set output.history_interval=5e-5 --set time.end=2e-4)
+"$BIN" run "$CASE" "${SETS[@]}" "${SPARSE[@]}" --out "$TMP/sparse_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the serial run with sparse checks failed"
+mpi 2 sparse run "$CASE" "${SETS[@]}" "${SPARSE[@]}" --out "$TMP/sparse"
+if [[ $rc -ne 0 ]]; then
+  fail "2 ranks, sparse checks: exit $rc"
+else
+  same "2 ranks, sparse checks" "$TMP/sparse" "$TMP/sparse_serial"
+  moves=$(/usr/bin/python3 -c '
+import json, sys
+rows = json.load(open(sys.argv[1]))["per_rank"]
+print(" ".join(str(x["slice_moves"]) for x in rows),
+      all(x["slice_bytes"] >= x["slice_moves"] * 48 * x["owned_particles"] for x in rows))' \
+    "$TMP/sparse/run.json")
+  [[ $moves == "4 4 True" ]] &&
+    ok "2 ranks, sparse checks: each rank's slice moved only at the 4 reads" ||
+    fail "2 ranks, sparse checks: slice moves per rank and bytes: $moves (want 4 4 True)"
+fi
+
 # Ranks x threads: 2 x 2.
 mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2
 [[ $rc -eq 0 ]] && same "2 ranks x 2 threads" "$TMP/threads2" || fail "2 ranks x 2 threads: exit $rc"
@@ -87,6 +113,39 @@ cp -r "$TMP/half" "$TMP/half3"
   same "2 ranks, resumed at 1" "$TMP/half" || fail "resume at 1 rank failed: $(cat "$TMP/resume1.err")"
 mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "2 ranks, resumed at 3" "$TMP/half3" || fail "resume at 3 ranks: exit $rc"
+
+# A batch system's SIGTERM to the launcher (which forwards it to every
+# rank) stops the run with a checkpoint and releases every rank; the run
+# resumed at 3 ranks gives the serial bits.
+"$MPIEXEC" -np 2 --oversubscribe --allow-run-as-root "$BIN" run "$CASE" "${SETS[@]}" \
+  --set time.end=2e-4 --out "$TMP/term" </dev/null >"$TMP/term.out" 2>"$TMP/term.err" &
+launcher=$!
+for _ in $(seq 200); do [[ -f "$TMP/term/checkpoint.h5" ]] && break; sleep 0.05; done
+sleep 1
+kill -TERM "$launcher"
+waited=0
+while kill -0 "$launcher" 2>/dev/null && [[ $waited -lt 120 ]]; do sleep 0.5; waited=$((waited + 1)); done
+if kill -0 "$launcher" 2>/dev/null; then
+  kill -KILL "$launcher"
+  fail "SIGTERM at 2 ranks: the job still ran a minute after the signal"
+else
+  wait "$launcher"
+  stopped=$(/usr/bin/python3 -c '
+import json, sys
+r = json.load(open(sys.argv[1]))
+print(r["outcome"], r["final_step"] > 0)' "$TMP/term/run.json" 2>&1)
+  if [[ $stopped == "completed True" ]]; then
+    echo "note: the 2-rank run ended before SIGTERM arrived; nothing to check"
+  elif [[ $stopped == "stopped by SIGTERM True" ]]; then
+    ok "SIGTERM at 2 ranks: stopped with a checkpoint, every rank ended"
+    mpi 3 term_resume resume "$TMP/term"
+    [[ $rc -eq 0 ]] && same "SIGTERM at 2 ranks, resumed at 3" "$TMP/term" ||
+      fail "SIGTERM at 2 ranks, resumed at 3: exit $rc"
+  else
+    fail "SIGTERM at 2 ranks: run.json says $stopped (want: stopped by SIGTERM)"
+    sed 's/^/    /' "$TMP/term.err" | head -n 8
+  fi
+fi
 
 # Contact: the colliding blocks (finite_strain) at l0 = 0.5 mm (seven
 # chunks: every rank owns some) through the collision at 2 and 3 ranks, and
