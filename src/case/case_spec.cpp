@@ -111,6 +111,13 @@ void CaseSpec::set_auto_time_step(double limit, double omega_max) {
       history_default ? frame_interval : std::min(history_interval, frame_interval);
   const double target = dt_safety * limit;
   dt = finest / std::ceil(finest / target * (1.0 - 1e-12));
+  // The case was read with dt unknown; a run shorter than the step it chose
+  // would not read back (its resolved case, a checkpoint's) any more.
+  if (end < dt)
+    throw InputError(fmt::format(
+        "{}: time.end = {} s is shorter than the step time.dt = \"auto\" chose ({:.6g} s, with "
+        "whole steps per output interval); allowed: time.end >= {:.6g} s (or give dt)",
+        source, end, dt, dt));
   snap_default_history();
   // The resolved case keeps the chosen step as a number, so a resumed run
   // goes on with it rather than estimating again.

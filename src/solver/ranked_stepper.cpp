@@ -327,24 +327,33 @@ void release() {
 }
 }  // namespace followers
 
+namespace {
+// Bad input only a follower meets (rank 0 checked the case before sending
+// it, and waits for this rank) ends the job here, so no rank hangs.
+[[noreturn]] void end_job(const Communicator& world, const std::string& what) {
+  fmt::print(stderr, "mpsolid: error: {}\n", what);
+  world.abort(2);
+}
+}  // namespace
+
 int follow_rank_zero() {
   const Communicator& world = Communicator::world();
   std::string text;
   world.broadcast(text);
   if (text.empty()) return 0;  // rank 0 stopped before its case
   try {
-    const CaseSpec spec = load_case_text(text, "rank 0's case");
+    CaseSpec spec;
+    try {
+      spec = load_case_text(text, "rank 0's case");
+    } catch (const InputError& e) {
+      end_job(world, fmt::format("rank {} cannot read rank 0's case: {}", world.rank(), e.what()));
+    }
     set_flush_subnormals(spec.flush_subnormals);
     std::unique_ptr<RankedStepper> stepper;
     try {
       stepper = std::make_unique<RankedStepper>(spec);
     } catch (const CaseRefused&) {
       // Rank 0 refused the case and reports it; wait to be released.
-    } catch (const InputError& e) {
-      // This rank's own part is bad input (its model checks its particles,
-      // which rank 0 never does): only this rank knows, so it ends the job.
-      fmt::print(stderr, "mpsolid: error: {}\n", e.what());
-      world.abort(2);
     }
     for (;;) {
       std::int64_t command = 0;
@@ -353,8 +362,10 @@ int follow_rank_zero() {
       if (!stepper) throw std::logic_error("steps for a refused case");
       stepper->follow(followers::steps_of(command), followers::exchange_of(command));
     }
-  } catch (const InputError&) {
-    return 2;  // the same error as rank 0's, which reports it
+  } catch (const InputError& e) {
+    // This rank's own part is bad input (its model checks its particles,
+    // which rank 0 never does).
+    end_job(world, e.what());
   } catch (const std::exception& e) {
     fmt::print(stderr, "mpsolid: rank {} failed: {}\n", world.rank(), e.what());
     world.abort(1);

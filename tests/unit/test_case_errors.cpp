@@ -298,6 +298,19 @@ TEST(GoodCases, AutoTimeStepFitsWholeStepsInTheFinestOutput) {
   EXPECT_NE(spec.resolved_toml.find("time.dt = \"auto\" chose"), std::string::npos);
 }
 
+TEST(CaseErrors, AutoTimeStepLongerThanTheRun) {
+  CaseSpec spec =
+      load_case_text(base_toml(), "bad.toml",
+                     {"time.dt=\"auto\"", "output.history_interval=1e-4", "time.end=2e-6"});
+  try {
+    spec.set_auto_time_step(1.19e-5, 2.0 / 1.19e-5);  // chooses 4.55 us
+    ADD_FAILURE() << "a run shorter than the chosen step was accepted";
+  } catch (const InputError& e) {
+    for (const char* needle : {"bad.toml", "time.end", "auto", "4.54545e-06"})
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
 // ---- unknown keys -----------------------------------------------------------
 
 TEST(CaseErrors, UnknownKeyInATable) {
