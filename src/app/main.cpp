@@ -97,6 +97,18 @@ int main(int argc, char** argv) {
   std::optional<MpiSession> mpi;
   if (launched_by_mpi()) mpi.emplace(&argc, &argv);
   const Communicator& world = Communicator::world();
+  if (world.size() == 1 && launcher_job_size() > 1) {
+    // A build without MPI, started as one of several ranks: each would run
+    // the whole case alone, into the same folder.
+    if (launcher_rank() == 0)
+      fmt::print(stderr,
+                 "mpsolid: error: started as one of {} ranks, but this mpsolid was built without "
+                 "MPI (mpsolid --version), so every rank would run the whole case alone; install "
+                 "MPI and build again (scripts/install_deps.sh, docs/mpi.md), or run it without "
+                 "mpirun and use --threads\n",
+                 launcher_job_size());
+    return kExitBadInput;
+  }
   // One thread per rank unless asked for more: ranks already share the cores.
   if (world.size() > 1 && threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr) threads = 1;
   if (world.size() > 1 && study->parsed()) {

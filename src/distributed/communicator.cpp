@@ -1,6 +1,7 @@
 #include "src/distributed/communicator.hpp"
 
 #include <cstdlib>
+#include <initializer_list>
 #include <stdexcept>
 
 #ifdef MPSOLID_HAVE_MPI
@@ -24,6 +25,24 @@ bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
     if (std::getenv(name) != nullptr) return true;
   return false;
+}
+
+namespace {
+// The first of the environment variables `names` that holds a number, or
+// `absent`.
+int launcher_number(std::initializer_list<const char*> names, int absent) {
+  for (const char* name : names)
+    if (const char* value = std::getenv(name); value != nullptr && *value != '\0')
+      return std::atoi(value);
+  return absent;
+}
+}  // namespace
+
+int launcher_job_size() {
+  return launcher_number({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1);
+}
+int launcher_rank() {
+  return launcher_number({"OMPI_COMM_WORLD_RANK", "PMI_RANK"}, 0);
 }
 
 #ifdef MPSOLID_HAVE_MPI

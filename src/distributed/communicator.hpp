@@ -62,6 +62,13 @@ class MpiSession {
 // with PMI or PMIx): its environment names the job's size or this rank.
 bool launched_by_mpi();
 
+// The job's rank count and this process's rank as the launcher's
+// environment names them (Open MPI's, or PMI's under MPICH or srun); 1 and 0
+// when it names none. A build without MPI reads them to refuse a job of
+// several ranks, whose every rank would run the whole case alone.
+int launcher_job_size();
+int launcher_rank();
+
 // "Open MPI 4.1.4" (the library's own words), or "none" in a build without MPI.
 std::string mpi_library_version();
 
