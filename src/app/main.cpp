@@ -109,6 +109,12 @@ int main(int argc, char** argv) {
                  launcher_job_size());
     return kExitBadInput;
   }
+  if (world.size() == 1 && launcher_job_size() == 1 && slurm_step_tasks() > 1 && slurm_task() == 0)
+    // Not refused: an interactive `srun -n N --pty bash` shell looks the same.
+    fmt::print(stderr,
+               "mpsolid: note: srun started {} tasks, but not as one MPI job (no MPI plugin: "
+               "Open MPI needs srun --mpi=pmix), so each runs the case alone (docs/mpi.md)\n",
+               slurm_step_tasks());
   // One thread per rank unless asked for more: ranks already share the cores.
   if (world.size() > 1 && threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr) threads = 1;
   if (world.size() > 1 && study->parsed()) {

@@ -39,10 +39,18 @@ int launcher_number(std::initializer_list<const char*> names, int absent) {
 }  // namespace
 
 int launcher_job_size() {
-  return launcher_number({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1);
+  // srun's PMIx names no size: its step's task count is the job's.
+  const int pmix_size = std::getenv("PMIX_RANK") ? launcher_number({"SLURM_STEP_NUM_TASKS"}, 1) : 1;
+  return launcher_number({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, pmix_size);
 }
 int launcher_rank() {
-  return launcher_number({"OMPI_COMM_WORLD_RANK", "PMI_RANK"}, 0);
+  return launcher_number({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}, 0);
+}
+int slurm_step_tasks() {
+  return launcher_number({"SLURM_STEP_NUM_TASKS"}, 0);
+}
+int slurm_task() {
+  return launcher_number({"SLURM_PROCID"}, 0);
 }
 
 #ifdef MPSOLID_HAVE_MPI

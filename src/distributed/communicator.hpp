@@ -63,11 +63,16 @@ class MpiSession {
 bool launched_by_mpi();
 
 // The job's rank count and this process's rank as the launcher's
-// environment names them (Open MPI's, or PMI's under MPICH or srun); 1 and 0
-// when it names none. A build without MPI reads them to refuse a job of
+// environment names them (Open MPI's; PMI's under MPICH; PMIx's and the
+// step's task count under srun); 1 and 0 when it names none. A build without MPI reads them to refuse a job of
 // several ranks, whose every rank would run the whole case alone.
 int launcher_job_size();
 int launcher_rank();
+// Under srun: the step's task count and this task's number (SLURM's
+// SLURM_STEP_NUM_TASKS and SLURM_PROCID; 0 and 0 outside a step). srun
+// without an MPI plugin starts tasks that are not one MPI job.
+int slurm_step_tasks();
+int slurm_task();
 
 // "Open MPI 4.1.4" (the library's own words), or "none" in a build without MPI.
 std::string mpi_library_version();

@@ -5,7 +5,10 @@
 #  - it gives the MPI build's one-rank bits (compare_runs.py);
 #  - started as one of 2 ranks by a launcher, it refuses with exit 2 and one
 #    message, and writes nothing (each rank would run the whole case alone);
-#    as the only rank it runs.
+#    as the only rank it runs; so under srun's PMIx (its environment
+#    imitated);
+#  - srun without an MPI plugin (its environment imitated) gets a note from
+#    task 0 that each task runs the case alone.
 #
 #   bash tests/cli/test_no_mpi.sh MPSOLID_NO_MPI MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -55,6 +58,24 @@ timeout 120 "$MPIEXEC" -np 1 --allow-run-as-root "$ALONE" "${RUN[@]}" --out "$TM
 rc=$?
 [[ $rc -eq 0 && -s "$TMP/one/history.csv" ]] && ok "1 rank under the launcher: runs" ||
   fail "1 rank under the launcher: exit $rc: $(head -c 600 "$TMP/one.err")"
+
+# srun's environment: PMIx names the rank, the step the task count.
+PMIX_RANK=0 SLURM_STEP_NUM_TASKS=2 SLURM_PROCID=0 "$ALONE" "${RUN[@]}" --out "$TMP/srun" \
+  </dev/null >/dev/null 2>"$TMP/srun.err"
+rc=$?
+[[ $rc -eq 2 && ! -e "$TMP/srun" ]] && grep -q "built without MPI" "$TMP/srun.err" &&
+  ok "srun's PMIx, 2 tasks: exit 2, the message, nothing written" ||
+  fail "srun's PMIx, 2 tasks: exit $rc: $(head -c 600 "$TMP/srun.err")"
+for task in 0 1; do
+  SLURM_STEP_NUM_TASKS=2 SLURM_PROCID=$task "$BIN" "${RUN[@]}" --out "$TMP/plain$task" \
+    </dev/null >/dev/null 2>"$TMP/plain$task.err"
+  rc=$?
+  notes=$(grep -c "srun started 2 tasks, but not as one MPI job" "$TMP/plain$task.err")
+  want=$((task == 0 ? 1 : 0))
+  [[ $rc -eq 0 && $notes -eq $want ]] &&
+    ok "srun without an MPI plugin, task $task: runs, $notes note(s)" ||
+    fail "srun without an MPI plugin, task $task: exit $rc, $notes note(s) (want 0, $want)"
+done
 
 if [[ $failures -eq 0 ]]; then
   echo "test_no_mpi: all checks passed"
