@@ -64,8 +64,9 @@ bool launched_by_mpi();
 
 // The job's rank count and this process's rank as the launcher's
 // environment names them (Open MPI's; PMI's under MPICH; PMIx's and the
-// step's task count under srun); 1 and 0 when it names none. A build without MPI reads them to refuse a job of
-// several ranks, whose every rank would run the whole case alone.
+// step's task count under srun); 1 and 0 when it names none. A build
+// without MPI reads them to refuse a job of several ranks, whose every rank
+// would run the whole case alone.
 int launcher_job_size();
 int launcher_rank();
 // Under srun: the step's task count and this task's number (SLURM's
