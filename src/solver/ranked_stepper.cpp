@@ -150,6 +150,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
   parts_->dt = spec.dt;
   parts_->limits = {spec.stability.min_jacobian};
   parts_->decomposition = decompose_state(global, world.size());
+  slice_moves_.resize(static_cast<std::size_t>(world.size()));
   // Each follower's part, built and sent one at a time (rank 0 never holds
   // two); an empty message tells a follower the case was refused.
   for (int r = 1; r < world.size(); ++r) {
@@ -209,7 +210,7 @@ RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, Excha
   std::vector<double> mine = step_and_report(steps, how);
   global.step = p.local.step;
   RankFields out;
-  if (!how.bring_back && !how.fields) return out;
+  if (!how.answered()) return out;
   if (how.bring_back) rank_times_.clear();
   std::vector<double> chunk_sums;
   for (int r = 0; r < world.size(); ++r) {
@@ -228,7 +229,6 @@ RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, Excha
 }
 
 void RankedStepper::count_slice_move(int r, std::size_t doubles) {
-  slice_moves_.resize(static_cast<std::size_t>(Communicator::world().size()));
   SliceMoves& m = slice_moves_[static_cast<std::size_t>(r)];
   m.moves += 1;
   m.bytes += static_cast<double>(doubles * sizeof(double));
@@ -253,7 +253,7 @@ void RankedStepper::follow(std::int64_t steps, Exchange how) {
     Slice::read(p.local, p.layout.owned, slice, at);
   }
   const std::vector<double> back = step_and_report(steps, how);
-  if (how.bring_back || how.fields) world.send(0, back);
+  if (how.answered()) world.send(0, back);
 }
 
 std::vector<double> RankedStepper::step_and_report(std::int64_t steps, Exchange how) {

@@ -42,6 +42,8 @@ class RankedStepper {
     bool send_slices = false;  // before the steps: rank 0's copy changed
     bool bring_back = false;   // after them: rank 0 reads the state
     bool fields = false;       // and the fields of the current positions
+    // Whether each rank sends rank 0 a message after the steps.
+    bool answered() const { return bring_back || fields; }
   };
   // Rank 0: tells the followers; with `send_slices`, sends every rank its
   // owned slice of `global` (its particles, bodies and loads); `steps`
