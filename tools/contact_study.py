@@ -32,49 +32,34 @@ scale for all panels, x down the page; titled with the label and the time
 px wide at the default --dpi 150 with 2 or 3 pairs (a panel is at most 3.2
 inches, so one pair gives a narrower picture), as tall as the rows need.
 
-Reads the runs with python/mpsolid/run_data.py and measures with
-python/mpsolid/analysis.py (both loaded by path: they need no build); draws
-with tools/plot.py's colours and PNG writer. A run still in progress (no
+Reads the runs with mpsolid.run_data and measures with mpsolid.analysis;
+draws with mpsolid.plot's colours and PNG writer (all three from the source
+tree's python/mpsolid: no build needed). A run still in progress (no
 run.json yet) is read as far as it got. Needs numpy, h5py and matplotlib
 (Debian's /usr/bin/python3). Exit codes: 0 done; 2 a bad argument, a missing
 folder, history.csv, frames.h5 or column; 1 results that cannot be read.
 """
 import argparse
-import importlib.util
 import math
 import os
 import sys
 
-TOOLS = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(TOOLS)
-sys.path.insert(0, TOOLS)
-import plot  # noqa: E402  (tools/plot.py)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from source_package import mpsolid_module, require_libraries  # noqa: E402
 
 PROMINENCE_SHARE = 0.02      # later peaks: prominence at least 2 % of the first peak
-FIGURE_WIDTH_IN = plot.FIGURE_WIDTH_IN   # 2190 px at 150 dpi
 MIN_FIGURE_WIDTH_IN = 9.0
 MAX_PANEL_IN = 3.2          # a panel's larger side: with one pair, 10 rows stay ~5000 px tall
 DEFAULT_TIMES_MS = "1,2,3,4,5,6,7,8,9,10"
 
-np = None   # numpy, set by main() once plot.load_libraries() has checked it
+analysis = mpsolid_module("analysis")
+# Set by main() once require_libraries() has checked numpy, h5py and matplotlib.
+np = run_data = plot = None
 
 
 def fail(message, code=2):
     print(f"contact_study.py: {message}", file=sys.stderr)
     sys.exit(code)
-
-
-def load_module(name):
-    """python/mpsolid/NAME.py by path (the package's __init__ needs the build)."""
-    path = os.path.join(ROOT, "python", "mpsolid", f"{name}.py")
-    spec = importlib.util.spec_from_file_location(f"mpsolid_{name}", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-analysis = load_module("analysis")
-run_data = None   # loaded by main(): it imports numpy
 
 
 # ---------------------------------------------------------------- arguments
@@ -143,7 +128,7 @@ def parse_times(text):
 def check_folder(folder, need_frames):
     if not os.path.isdir(folder):
         fail(f"{folder}: no such folder")
-    wanted = ["history.csv"] + (["frames.h5"] if need_frames else [])
+    wanted = [run_data.HISTORY_CSV] + ([run_data.FRAMES_H5] if need_frames else [])
     missing = [f for f in wanted if not os.path.isfile(os.path.join(folder, f))]
     if missing:
         fail(f"{folder} has no {' and '.join(missing)}: not an mpsolid run folder, or the run "
@@ -152,18 +137,16 @@ def check_folder(folder, need_frames):
 
 def read_history(folder, body):
     """history.csv as {column: array}; the energies and BODY.x must be there."""
-    path = os.path.join(folder, "history.csv")
+    path = os.path.join(folder, run_data.HISTORY_CSV)
     try:
-        table = run_data.read_history(path)
+        h = run_data.read_history_columns(folder)
     except (OSError, ValueError) as e:
         fail(f"{path} cannot be read as an mpsolid history ({e})", 1)
-    h = {name: np.atleast_1d(table[name]).astype(float) for name in table.dtype.names}
-    missing = [c for c in ("t", "kinetic_energy", "strain_energy", "external_work")
-               if c not in h]
+    missing = [c for c in plot.HISTORY_COLUMNS_NEEDED if c not in h]
     if missing:
         fail(f"{path} has no column {', '.join(missing)}", 1)
     if f"{body}.x" not in h:
-        rigid = sorted(c[:-2] for c in h if c.endswith(".x") and c[:-2] + ".theta" in h)
+        rigid = sorted(plot.history_bodies(h)[0])
         fail(f"{path} has no column {body}.x (rigid bodies: {', '.join(rigid) or 'none'}); "
              f"choose one with --body")
     if h["t"].size == 0:
@@ -172,7 +155,7 @@ def read_history(folder, body):
 
 
 def read_frames(folder):
-    path = os.path.join(folder, "frames.h5")
+    path = os.path.join(folder, run_data.FRAMES_H5)
     try:
         frames = run_data.Frames(path)
     except (OSError, KeyError) as e:
@@ -257,7 +240,7 @@ def measure_run(label, folder, h, body, times_ms):
 
 def describe(label, folder, h):
     """One line on a run: folder, case, l0, contact, outcome."""
-    run, case = plot.read_run(folder)
+    run, case = run_data.read_info(folder, default={}), run_data.read_case(folder, default={})
     parts = [case.get("name") or run.get("case") or "case unknown"]
     if "l0" in case:
         parts.append(f"l0 = {plot.number(float(case['l0']) * 1e3)} mm")
@@ -394,14 +377,14 @@ def draw_panel(ax, panel, x_range, y_range, points_per_mm, legend):
 
 
 def plot_pictures(out, grid, runs, contact, pairs, dpi):
-    from matplotlib.lines import Line2D
+    from matplotlib.figure import Figure
 
     x_range, y_range = data_box(grid)
     data_w, data_h = y_range[1] - y_range[0], x_range[1] - x_range[0]
     rows, columns = len(grid), len(grid[0])
     left, right, gap, pair_gap, row_gap = 0.6, 0.2, 0.15, 0.4, 0.34
     gaps = [pair_gap if pairs and c % 2 == 0 else gap for c in range(1, columns)]
-    panel_w = (FIGURE_WIDTH_IN - left - right - sum(gaps)) / columns
+    panel_w = (plot.FIGURE_WIDTH_IN - left - right - sum(gaps)) / columns
     panel_w = min(panel_w, MAX_PANEL_IN, MAX_PANEL_IN * data_w / data_h)
     panel_h = panel_w * data_h / data_w
     # Few columns: a narrower figure (room for the title kept), the grid centred.
@@ -411,7 +394,7 @@ def plot_pictures(out, grid, runs, contact, pairs, dpi):
         fig_w = MIN_FIGURE_WIDTH_IN
     top, bottom = 0.85, 0.95
     fig_h = top + bottom + rows * panel_h + (rows - 1) * row_gap
-    fig = plot.plt.figure(figsize=(fig_w, fig_h))
+    fig = Figure(figsize=(fig_w, fig_h))
     points_per_mm = panel_w * 72.0 / data_w
     legend = {}
     for r, line in enumerate(grid):
@@ -442,8 +425,7 @@ def plot_pictures(out, grid, runs, contact, pairs, dpi):
     fig.text(0.5, 1 - 0.42 / fig_h, "the frame nearest each time; elastic bodies drawn over "
              "walls and rigid bodies, so an overlap is interpenetration", ha="center", va="top",
              fontsize=9.5, color="#333333")
-    handles = [Line2D([], [], marker="o", linestyle="", markersize=8, color=colour)
-               for colour in legend.values()]
+    handles = [plot.legend_marker(colour) for colour in legend.values()]
     fig.legend(handles, list(legend), loc="lower center", ncol=max(len(legend), 1),
                frameon=False, fontsize=9.5, bbox_to_anchor=(0.5, 0.2 / fig_h))
     folders = "; ".join(f"{label}: {os.path.abspath(folder)}" for label, folder in runs.items()
@@ -474,11 +456,11 @@ def write_text(path, text):
 
 
 def main():
-    global np, run_data
+    global np, run_data, plot
     args = parse_args()
-    plot.load_libraries()
-    np = plot.np
-    run_data = load_module("run_data")
+    require_libraries("tools/contact_study.py")
+    import numpy
+    np, run_data, plot = numpy, mpsolid_module("run_data"), mpsolid_module("plot")
     runs = dict(parse_runs(args.run))
     pairs = parse_pairs(args.pair, list(runs))
     times_ms = parse_times(args.times_ms)

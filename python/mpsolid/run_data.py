@@ -1,12 +1,23 @@
 """A run folder read back: history.csv as a numpy structured array (a pandas
-DataFrame when pandas is installed), the frames of frames.h5 read lazily,
-run.json and case.resolved.toml as dicts. Reads only; a run in progress can
-be read while it writes (every file is replaced atomically)."""
+DataFrame when pandas is installed) or as columns, the frames of frames.h5
+read lazily, run.json and case.resolved.toml as dicts. Reads only; a run in
+progress can be read while it writes (every file is replaced atomically).
+Every script that reads a run folder reads it through here, so that the
+files' layout is known in one place."""
 import json
 import os
 import tomllib
+import warnings
 
 import numpy as np
+
+RUN_JSON = "run.json"
+CASE_TOML = "case.resolved.toml"
+HISTORY_CSV = "history.csv"
+FRAMES_H5 = "frames.h5"
+CHECKPOINT_H5 = "checkpoint.h5"
+
+_REQUIRED = object()   # read_info/read_case without a default: errors raise
 
 
 class Frame:
@@ -82,14 +93,51 @@ class Frames:
         return min(self._frames, key=lambda fr: abs(fr.time - t))
 
 
+def _read_file(folder, name, load, mode, default):
+    """load(file) of FOLDER/NAME; `default` instead when it is absent or
+    unreadable, if one is given (a run not yet started, or killed before
+    writing it, is then no error)."""
+    try:
+        with open(os.path.join(os.fspath(folder), name), mode) as f:
+            return load(f)
+    except (OSError, ValueError):
+        if default is _REQUIRED:
+            raise
+        return default
+
+
+def read_info(folder, default=_REQUIRED):
+    """run.json of a run folder as a dict (outcome, wall time, diagnosis, ...).
+    Raises OSError or ValueError when it is absent or not JSON, unless a
+    `default` is given, which is returned instead."""
+    return _read_file(folder, RUN_JSON, json.load, "r", default)
+
+
+def read_case(folder, default=_REQUIRED):
+    """case.resolved.toml of a run folder as a dict (every default filled in).
+    Raises as read_info does, unless a `default` is given."""
+    return _read_file(folder, CASE_TOML, tomllib.load, "rb", default)
+
+
 def read_history(path):
-    """history.csv as a numpy structured array, one float64 field per column."""
+    """history.csv as a numpy structured array, one float64 field per column
+    (the values are the file's bits: numpy parses as float() does). A file
+    with only its header (a run that has just started) gives no rows."""
     with open(path) as f:
         header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        with warnings.catch_warnings():   # no rows yet: no warning, an empty table
+            warnings.simplefilter("ignore", UserWarning)
+            data = np.loadtxt(f, delimiter=",", ndmin=2)
     if data.size == 0:
         data = np.empty((0, len(header)))
     return np.rec.fromarrays([data[:, k] for k in range(len(header))], names=header)
+
+
+def read_history_columns(folder):
+    """history.csv of a run folder as {column: float64 array}, in the file's
+    column order: what scripts that do arithmetic on whole columns want."""
+    table = read_history(os.path.join(os.fspath(folder), HISTORY_CSV))
+    return {name: np.array(table[name], dtype=float) for name in table.dtype.names}
 
 
 class Run:
@@ -100,25 +148,23 @@ class Run:
 
     def __init__(self, folder):
         self.folder = os.fspath(folder)
-        if not os.path.isfile(os.path.join(self.folder, "run.json")):
+        if not os.path.isfile(os.path.join(self.folder, RUN_JSON)):
             raise FileNotFoundError(f"{self.folder}: not a run folder (no run.json)")
         self._history = None
         self._frames = None
 
     @property
     def info(self):
-        with open(os.path.join(self.folder, "run.json")) as f:
-            return json.load(f)
+        return read_info(self.folder)
 
     @property
     def case(self):
-        with open(os.path.join(self.folder, "case.resolved.toml"), "rb") as f:
-            return tomllib.load(f)
+        return read_case(self.folder)
 
     @property
     def history_array(self):
         if self._history is None:
-            self._history = read_history(os.path.join(self.folder, "history.csv"))
+            self._history = read_history(os.path.join(self.folder, HISTORY_CSV))
         return self._history
 
     @property
@@ -132,7 +178,7 @@ class Run:
     @property
     def frames(self):
         if self._frames is None:
-            self._frames = Frames(os.path.join(self.folder, "frames.h5"))
+            self._frames = Frames(os.path.join(self.folder, FRAMES_H5))
         return self._frames
 
     @property

@@ -1,21 +1,29 @@
 #!/usr/bin/python3
 """mpsolid.open_run (python/mpsolid/run_data.py) on a short run of the paper's
-case: history, frames read lazily, run.json and the resolved case."""
+case: history, frames read lazily, run.json and the resolved case; and the
+module's functions the scripts read run folders with (read_info, read_case,
+read_history_columns)."""
 import csv
+import json
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
+import warnings
 
 import numpy as np
 
 import mpsolid
+from mpsolid import run_data
 from mpsolid.study import executable
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-class OpenRun(unittest.TestCase):
+class ShortRun(unittest.TestCase):
+    """A short run of the paper's case in a temporary folder, for the class."""
+
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
@@ -28,6 +36,9 @@ class OpenRun(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         cls.tmp.cleanup()
+
+
+class OpenRun(ShortRun):
 
     def test_history_is_the_csv(self):
         run = mpsolid.open_run(self.dir)
@@ -68,6 +79,57 @@ class OpenRun(unittest.TestCase):
         self.assertIn("completed", repr(run))
         with self.assertRaises(FileNotFoundError):
             mpsolid.open_run(os.path.join(self.dir, "nothing"))
+
+
+class ReadFunctions(ShortRun):
+    """run_data's functions of a run folder."""
+
+    def test_read_info_and_read_case_are_the_files(self):
+        with open(os.path.join(self.dir, "run.json")) as f:
+            self.assertEqual(run_data.read_info(self.dir), json.load(f))
+        self.assertEqual(run_data.read_info(self.dir), mpsolid.open_run(self.dir).info)
+        case = run_data.read_case(self.dir)
+        self.assertEqual((case["l0"], case["model"]), (0.002, "paper"))
+
+    def test_a_missing_file_raises_unless_a_default_is_given(self):
+        empty = os.path.join(self.tmp.name, "empty")
+        os.makedirs(empty, exist_ok=True)
+        with self.assertRaises(FileNotFoundError):
+            run_data.read_info(empty)
+        with self.assertRaises(FileNotFoundError):
+            run_data.read_case(empty)
+        self.assertIsNone(run_data.read_info(empty, default=None))
+        self.assertEqual(run_data.read_case(empty, default={}), {})
+        # A run.json cut short (a run killed while starting) counts as absent too.
+        with open(os.path.join(empty, "run.json"), "w") as f:
+            f.write('{"outcome": "comp')
+        with self.assertRaises(ValueError):
+            run_data.read_info(empty)
+        self.assertEqual(run_data.read_info(empty, default={}), {})
+
+    def test_history_columns_are_the_csv_bits_in_its_order(self):
+        columns = run_data.read_history_columns(self.dir)
+        with open(os.path.join(self.dir, "history.csv"), newline="") as f:
+            rows = list(csv.reader(f))
+        self.assertEqual(list(columns), rows[0])
+        for k, name in enumerate(rows[0]):
+            expected = np.array([float(r[k]) for r in rows[1:]])
+            self.assertEqual(columns[name].dtype, np.float64)
+            self.assertEqual(columns[name].tobytes(), expected.tobytes(), name)
+
+    def test_a_history_with_only_its_header_has_no_rows(self):
+        started = os.path.join(self.tmp.name, "started")
+        os.makedirs(started, exist_ok=True)
+        with open(os.path.join(self.dir, "history.csv")) as f:
+            header = f.readline()
+        with open(os.path.join(started, "history.csv"), "w") as f:
+            f.write(header)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")   # and no warning about it
+            columns = run_data.read_history_columns(started)
+        self.assertEqual(list(columns), header.strip().split(","))
+        self.assertTrue(all(c.size == 0 for c in columns.values()))
+        shutil.rmtree(started)
 
 
 if __name__ == "__main__":
