@@ -41,6 +41,10 @@ import sys
 REPO = pathlib.Path(__file__).resolve().parents[1]
 CASE = REPO / "cases" / "shock_rod.toml"
 DT = 1.0e-8  # the case's dt (checked against run.json)
+sys.path.insert(0, str(REPO / "tools"))
+from source_package import mpsolid_module  # noqa: E402
+
+run_data = mpsolid_module("run_data")   # run.json, read through the package (numpy needed)
 
 
 def fail(message):
@@ -120,7 +124,7 @@ def run_mpsolid(exe, folder, l0, steps, threads, model, fixed):
          "--set", f"time.end={end!r}",
          # One frame at the start and one at the end, checkpoints only at the ends.
          "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"])
-    rep = json.loads((folder / "run.json").read_text())
+    rep = run_data.read_info(folder)
     if rep["outcome"] != "completed" or rep["steps"] != steps or rep["dt"] != DT:
         fail(f"{folder / 'run.json'}: outcome {rep['outcome']}, {rep['steps']} steps, "
              f"dt {rep['dt']}; expected completed, {steps}, {DT}")

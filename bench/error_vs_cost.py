@@ -23,27 +23,16 @@ runs (the commands are there).
   bench/error_vs_cost.py --rod-only      # the rod grid and convergence study
 """
 import argparse
-import math
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
-from verification import (ROOT, Run, plate_answer, read_case, read_history, threads_of,  # noqa: E402
-                          wall_seconds)
+from source_package import mpsolid_module  # noqa: E402
+from verification import ROOT, Run, plate_answer, run_cost  # noqa: E402
 
-
-def _load_analysis():
-    """python/mpsolid/analysis.py by path: it needs no build (the package's
-    __init__ loads the compiled module)."""
-    import importlib.util
-    path = os.path.join(ROOT, "python", "mpsolid", "analysis.py")
-    spec = importlib.util.spec_from_file_location("mpsolid_analysis", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-_analysis = _load_analysis()
+# The package's pure-Python modules from the source tree: no build needed.
+run_data = mpsolid_module("run_data")
+_analysis = mpsolid_module("analysis")
 first_peak, richardson = _analysis.first_peak, _analysis.richardson
 
 ROD_END = 0.005
@@ -69,17 +58,15 @@ def rod_run(model, l0, safety=None, dt=None):
 
 
 def rod_answer(folder):
-    h = read_history(folder)
+    h = run_data.read_history_columns(folder)
+    cost = run_cost(folder, run_data.read_case(folder))
+    common = {"wall": cost["wall_seconds"], "dt": cost["dt"], "threads": cost["threads"]}
     try:
         peak, when = first_peak(h["t"], h["plate.x"])
     except ValueError:  # stopped by a blow-up check before its first peak
-        import json
-        with open(os.path.join(folder, "run.json")) as f:
-            d = json.load(f)["diagnosis"]
-        return {"failed": f"{d['criterion']} at {d['time'] * 1e3:.2f} ms", "wall": wall_seconds(folder),
-                "dt": read_case(folder)["time"]["dt"], "threads": threads_of(folder)}
-    return {"peak": peak, "time": when, "wall": wall_seconds(folder), "threads": threads_of(folder),
-            "dt": read_case(folder)["time"]["dt"], "history": (h["t"], h["plate.x"])}
+        d = run_data.read_info(folder)["diagnosis"]
+        return {"failed": f"{d['criterion']} at {d['time'] * 1e3:.2f} ms", **common}
+    return {"peak": peak, "time": when, **common, "history": (h["t"], h["plate.x"])}
 
 
 def pareto(points):

@@ -25,6 +25,10 @@ import time
 REPO = pathlib.Path(__file__).resolve().parents[1]
 CASE = REPO / "cases" / "shock_rod.toml"
 DT = 1.0e-8
+sys.path.insert(0, str(REPO / "tools"))
+from source_package import mpsolid_module  # noqa: E402
+
+run_data = mpsolid_module("run_data")   # run.json, read through the package (numpy needed)
 
 # The layout at the time of writing (check against the headers when they change):
 # ParticleStore: 19 double arrays (x, y, vx, vy, theta, omega, x0, y0, half_cos,
@@ -69,7 +73,7 @@ def measure(exe, l0, steps, threads, folder):
         fail(f"mpsolid exited with {code} at l0 = {l0} m:\n{output[-3000:]}\n"
              "(at this size a failure in set-up is most likely memory: see dmesg for the OOM "
              "killer, or the message above)")
-    rep = json.loads((folder / "run.json").read_text())
+    rep = run_data.read_info(folder)
     particles, bonds = rep["particles"], rep["bonds"]
     entries = 2 * bonds
     layout = {name: (particles if per == "particle" else entries) * size

@@ -13,7 +13,6 @@ interrupted sweep continues where it stopped.
   tools/stability_map.py --l0 2 --dt-paper-only   # a quick subset
 """
 import argparse
-import json
 import math
 import os
 import shutil
@@ -21,7 +20,11 @@ import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from source_package import ROOT, mpsolid_module, require_libraries  # noqa: E402
+
+require_libraries("tools/stability_map.py", ("numpy", "matplotlib"))
+run_data = mpsolid_module("run_data")
 FORCES_KN = [11.2, 22.4, 33.6, 55.9, 84.0, 112.0]
 MODELS = ["paper", "paper_conservative", "finite_strain"]
 PAPER_DT = 1e-8
@@ -32,13 +35,12 @@ def cell_dir(args, model, l0_mm, force_kn, dt):
 
 
 def cached(args, model, l0_mm, force_kn, dt):
-    return os.path.exists(os.path.join(cell_dir(args, model, l0_mm, force_kn, dt), "run.json"))
+    return os.path.exists(os.path.join(cell_dir(args, model, l0_mm, force_kn, dt), run_data.RUN_JSON))
 
 
 def run_cell(args, model, l0_mm, force_kn, dt):
     out = cell_dir(args, model, l0_mm, force_kn, dt)
-    report = os.path.join(out, "run.json")
-    if not os.path.exists(report):
+    if not os.path.exists(os.path.join(out, run_data.RUN_JSON)):
         # Checks every ~5 us of simulated time whatever the step.
         interval = max(1, round(5e-6 / dt))
         cmd = [args.binary, "run", os.path.join(ROOT, "cases", "shock_rod.toml"), "--out", out,
@@ -50,8 +52,7 @@ def run_cell(args, model, l0_mm, force_kn, dt):
                "--set", f"stability.check_interval={interval}"]
         shutil.rmtree(out, ignore_errors=True)  # an unfinished cell is run afresh
         subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-    with open(report) as f:
-        r = json.load(f)
+    r = run_data.read_info(out)
     cell = {"model": model, "l0_mm": l0_mm, "force_kN": force_kn, "dt": dt,
             "outcome": r["outcome"], "wall_seconds": r["wall_seconds"]}
     if r["outcome"] == "unstable":

@@ -18,19 +18,22 @@ history.csv and compares it with theory:
 
 Each check has a tolerance that a wrong factor or sign would break; the run
 exits 1 if any fails. Finished runs are cached under --work (delete it, or
-pass --fresh, after changing the solver).
+pass --fresh, after changing the solver). Reads the runs with mpsolid.run_data
+(from the source tree: no build of the package needed; numpy needed).
 """
 import argparse
-import csv
 import math
 import os
 import shutil
 import subprocess
 import sys
-import tomllib
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from source_package import ROOT, mpsolid_module, require_libraries  # noqa: E402
+
+require_libraries("tools/verification.py", ("numpy",))
+run_data = mpsolid_module("run_data")
 MODELS = ["paper", "paper_conservative", "finite_strain"]
 PLATE_H = 0.02
 THIN_PLATE_PERIOD = 0.2541
@@ -71,35 +74,15 @@ class Run:
 def finished(folder):
     """A cached run counts if it ran to its end or was stopped by a blow-up
     check (not by a signal: that one is run again)."""
-    import json
-    try:
-        with open(os.path.join(folder, "run.json")) as f:
-            return not json.load(f)["outcome"].startswith("stopped")
-    except (OSError, ValueError, KeyError):
-        return False
+    outcome = run_data.read_info(folder, default={}).get("outcome")
+    return isinstance(outcome, str) and not outcome.startswith("stopped")
 
 
-def read_history(folder):
-    with open(os.path.join(folder, "history.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
-
-
-def read_case(folder):
-    with open(os.path.join(folder, "case.resolved.toml"), "rb") as f:
-        return tomllib.load(f)
-
-
-def wall_seconds(folder):
-    import json
-    with open(os.path.join(folder, "run.json")) as f:
-        return json.load(f)["wall_seconds"]
-
-
-def threads_of(folder):
-    import json
-    with open(os.path.join(folder, "run.json")) as f:
-        return json.load(f)["threads"]
+def run_cost(folder, case):
+    """The answers' common part: the run's wall time, threads and dt."""
+    info = run_data.read_info(folder)
+    return {"wall_seconds": info["wall_seconds"], "threads": info["threads"],
+            "dt": case["time"]["dt"]}
 
 
 def lame(material):
@@ -121,7 +104,7 @@ def zero_crossings(t, y, after):
 def plate_answer(folder):
     """Tip period (from the zero crossings of the tip's y displacement) and
     amplitude (its first maximum), with thin-plate theory's values."""
-    h, case = read_history(folder), read_case(folder)
+    h, case = run_data.read_history_columns(folder), run_data.read_case(folder)
     t = h["t"]
     y = [v - h["probe.tip.y"][0] for v in h["probe.tip.y"]]
     crossings = zero_crossings(t, y, after=0.01)
@@ -140,14 +123,13 @@ def plate_answer(folder):
     omega = math.sqrt(mat["E"] * PLATE_H ** 2 * k ** 4 / (12 * mat["rho"] * (1 - mat["nu"] ** 2)))
     return {"period": period, "period_theory": 2 * math.pi / omega,
             "amplitude": amplitude, "amplitude_theory": mode["tip_velocity"] / omega,
-            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
-            "dt": case["time"]["dt"]}
+            **run_cost(folder, case)}
 
 
 def wave_answer(folder):
     """Front speed: the times the probes' velocity passes half the driver's
     final velocity, fitted by a line against the probes' positions."""
-    h, case = read_history(folder), read_case(folder)
+    h, case = run_data.read_history_columns(folder), run_data.read_case(folder)
     t = h["t"]
 
     def velocity(x):
@@ -172,13 +154,11 @@ def wave_answer(folder):
     held = case["bodies"]["strip"].get("hold", "none") == "y"
     theory = (math.sqrt((lam + 2 * mu) / mat["rho"]) if held
               else math.sqrt(mat["E"] / ((1 - mat["nu"] ** 2) * mat["rho"])))
-    return {"speed": speed, "speed_theory": theory, "held": held,
-            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
-            "dt": case["time"]["dt"]}
+    return {"speed": speed, "speed_theory": theory, "held": held, **run_cost(folder, case)}
 
 
 def spin_answer(folder):
-    h, case = read_history(folder), read_case(folder)
+    h, case = run_data.read_history_columns(folder), run_data.read_case(folder)
     l0v = h["angular_momentum"][0]
     ke0 = h["kinetic_energy"][0]
     e = [a + b for a, b in zip(h["kinetic_energy"], h["strain_energy"])]
@@ -190,9 +170,7 @@ def spin_answer(folder):
             "momentum": max(math.hypot(a, b) for a, b in zip(h["momentum_x"], h["momentum_y"])) / p_scale,
             "kinetic_energy_change": (h["kinetic_energy"][-1] - ke0) / ke0,
             "energy_drift": max(abs(v - e[0]) for v in e) / e[0],
-            "turns": body["spin"] * h["t"][-1] / (2 * math.pi),
-            "wall_seconds": wall_seconds(folder), "threads": threads_of(folder),
-            "dt": case["time"]["dt"]}
+            "turns": body["spin"] * h["t"][-1] / (2 * math.pi), **run_cost(folder, case)}
 
 
 # ---- the problems and their tolerances --------------------------------------
