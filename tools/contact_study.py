@@ -136,21 +136,16 @@ def check_folder(folder, need_frames):
 
 
 def read_history(folder, body):
-    """history.csv as {column: array}; the energies and BODY.x must be there."""
-    path = os.path.join(folder, run_data.HISTORY_CSV)
+    """history.csv as {column: array}: at least one row, the energies
+    (mpsolid.plot.read_history) and BODY.x."""
     try:
-        h = run_data.read_history_columns(folder)
-    except (OSError, ValueError) as e:
-        fail(f"{path} cannot be read as an mpsolid history ({e})", 1)
-    missing = [c for c in plot.HISTORY_COLUMNS_NEEDED if c not in h]
-    if missing:
-        fail(f"{path} has no column {', '.join(missing)}", 1)
+        h = plot.read_history(folder)
+    except plot.PlotError as e:
+        fail(str(e), e.code)
     if f"{body}.x" not in h:
         rigid = sorted(plot.history_bodies(h)[0])
-        fail(f"{path} has no column {body}.x (rigid bodies: {', '.join(rigid) or 'none'}); "
-             f"choose one with --body")
-    if h["t"].size == 0:
-        fail(f"{path} has no rows yet", 1)
+        fail(f"{os.path.join(folder, run_data.HISTORY_CSV)} has no column {body}.x (rigid bodies: "
+             f"{', '.join(rigid) or 'none'}); choose one with --body")
     return h
 
 
