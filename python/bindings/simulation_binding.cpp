@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -22,31 +23,18 @@ namespace mpsolid::python {
 
 namespace {
 
-// The store's arrays Python sees, by name. Storage order, not id order.
-struct DoubleArray {
-  const char* name;
-  std::vector<double> ParticleStore::*member;
+// The element type numpy sees: a Kind as its integer (KIND_NAMES names it).
+template <class T>
+struct Numpy {
+  using type = T;
 };
-constexpr DoubleArray kDoubleArrays[] = {{"x", &ParticleStore::x},
-                                         {"y", &ParticleStore::y},
-                                         {"vx", &ParticleStore::vx},
-                                         {"vy", &ParticleStore::vy},
-                                         {"theta", &ParticleStore::theta},
-                                         {"omega", &ParticleStore::omega},
-                                         {"pressure", &ParticleStore::pressure},
-                                         {"strain", &ParticleStore::strain},
-                                         {"fx", &ParticleStore::fx},
-                                         {"fy", &ParticleStore::fy},
-                                         {"torque", &ParticleStore::torque},
-                                         {"x0", &ParticleStore::x0},
-                                         {"y0", &ParticleStore::y0}};
-struct IntArray {
-  const char* name;
-  std::vector<std::int32_t> ParticleStore::*member;
+template <class T>
+requires std::is_enum_v<T>
+struct Numpy<T> {
+  using type = std::underlying_type_t<T>;
 };
-constexpr IntArray kIntArrays[] = {{"ids", &ParticleStore::id},
-                                   {"bodies", &ParticleStore::body},
-                                   {"materials", &ParticleStore::material}};
+template <class T>
+using NumpyType = typename Numpy<T>::type;
 
 // Steps between looks at Python's signals: about 2e6 particle-steps (a
 // tenth of a second on one core), at most 1000. Batches end on multiples of
@@ -131,20 +119,22 @@ py::dict diagnostics_dict(const Diagnostics& d) {
 
 // A read-only view of `data`, kept alive by `owner` (the Simulation).
 template <class T>
-py::array view(const py::object& owner, const T* data, std::size_t size) {
-  py::array a(py::dtype::of<T>(), {size}, {sizeof(T)}, data, owner);
+py::array view(const py::object& owner, const std::vector<T>& v) {
+  using N = NumpyType<T>;
+  static_assert(sizeof(N) == sizeof(T));
+  const auto* data = reinterpret_cast<const N*>(v.data());
+  py::array a(py::dtype::of<N>(), {v.size()}, {sizeof(N)}, data, owner);
   py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return a;
 }
 
 std::uintptr_t address_of(SimulationHandle& h, const std::string& name) {
-  const ParticleStore& p = h.sim().particles();
-  for (const DoubleArray& a : kDoubleArrays)
-    if (name == a.name) return reinterpret_cast<std::uintptr_t>((p.*a.member).data());
-  for (const IntArray& a : kIntArrays)
-    if (name == a.name) return reinterpret_cast<std::uintptr_t>((p.*a.member).data());
-  if (name == "kinds") return reinterpret_cast<std::uintptr_t>(p.kind.data());
-  throw py::key_error(name);
+  std::uintptr_t address = 0;
+  for_each_particle_array(h.sim().particles(), [&](const auto& info, const auto& v) {
+    if (name == info.name) address = reinterpret_cast<std::uintptr_t>(v.data());
+  });
+  if (address == 0) throw py::key_error(name);
+  return address;
 }
 
 }  // namespace
@@ -258,28 +248,19 @@ void bind_simulation(py::module_& m) {
           "particle (storage index and id), value and limit.")
       .def("_address", &address_of, py::arg("name"),
            "The address of the store's array `name` (for the zero-copy test).");
-  for (const DoubleArray& a : kDoubleArrays) {
-    const auto member = a.member;
-    cls.def_property_readonly(a.name, [member](py::object self) {
-      const std::vector<double>& v = self.cast<SimulationHandle&>().sim().particles().*member;
-      return view(self, v.data(), v.size());
-    });
-  }
-  for (const IntArray& a : kIntArrays) {
-    const auto member = a.member;
-    cls.def_property_readonly(a.name, [member](py::object self) {
-      const std::vector<std::int32_t>& v = self.cast<SimulationHandle&>().sim().particles().*member;
-      return view(self, v.data(), v.size());
-    });
-  }
-  cls.def_property_readonly(
-      "kinds",
-      [](py::object self) {
-        const std::vector<Kind>& v = self.cast<SimulationHandle&>().sim().particles().kind;
-        static_assert(sizeof(Kind) == sizeof(std::int8_t));
-        return view(self, reinterpret_cast<const std::int8_t*>(v.data()), v.size());
-      },
-      "Each particle's Kind as its integer (KIND_NAMES gives the names).");
+  // Every array of the store's table, under its name; PARTICLE_ARRAYS maps
+  // each name to its role.
+  py::dict arrays;
+  for_each_particle_member([&](const auto& info, auto member) {
+    cls.def_property_readonly(
+        info.name,
+        [member](py::object self) {
+          return view(self, self.cast<SimulationHandle&>().sim().particles().*member);
+        },
+        info.what);
+    arrays[info.name] = role_name(info.role);
+  });
+  m.attr("PARTICLE_ARRAYS") = arrays;
   py::dict kind_names;
   for (Kind k : {Kind::wall, Kind::elastic, Kind::rigid})
     kind_names[py::int_(static_cast<int>(k))] = kind_name(k);

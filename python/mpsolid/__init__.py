@@ -10,6 +10,7 @@ The compiled part is the extension _mpsolid; this package re-exports it.
 """
 from ._mpsolid import (
     KIND_NAMES,
+    PARTICLE_ARRAYS,
     Case,
     InputError,
     Simulation,
@@ -30,6 +31,7 @@ __all__ = [
     "Case",
     "InputError",
     "KIND_NAMES",
+    "PARTICLE_ARRAYS",
     "MPSOLID_EXECUTABLE",
     "Simulation",
     "__version__",

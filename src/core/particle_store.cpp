@@ -1,5 +1,7 @@
 #include "src/core/particle_store.hpp"
 
+#include <stdexcept>
+
 namespace mpsolid {
 
 const char* kind_name(Kind kind) {
@@ -14,16 +16,36 @@ const char* kind_name(Kind kind) {
   return "unknown";
 }
 
+const char* role_name(ArrayRole role) {
+  switch (role) {
+    case ArrayRole::state:
+      return "state";
+    case ArrayRole::reference:
+      return "reference";
+    case ArrayRole::work:
+      return "work";
+    case ArrayRole::constant:
+      return "constant";
+  }
+  return "unknown";
+}
+
 void ParticleStore::resize(std::size_t n) {
-  for (auto* v : {&x, &y, &vx, &vy, &theta, &omega, &x0, &y0, &strain, &pressure, &fx, &fy, &torque,
-                  &inv_mass, &inv_inertia, &lambda, &mu})
-    v->assign(n, 0.0);
-  half_cos.assign(n, 1.0);
-  half_sin.assign(n, 0.0);
-  id.assign(n, 0);
-  body.assign(n, 0);
-  material.assign(n, 0);
-  kind.assign(n, Kind::elastic);
+  for_each_particle_array(*this, [n](const auto& info, auto& v) { v.assign(n, info.initial); });
+}
+
+void ParticleStore::set_kind_ranges() {
+  const auto first_not = [&](std::size_t from, Kind k) {
+    while (from < size() && kind[from] == k) ++from;
+    return from;
+  };
+  const std::size_t walls_end = first_not(0, Kind::wall);
+  const std::size_t elastic_end = first_not(walls_end, Kind::elastic);
+  walls = {0, walls_end};
+  elastic = {walls_end, elastic_end};
+  rigid = {elastic_end, first_not(elastic_end, Kind::rigid)};
+  if (rigid.end != size())
+    throw std::logic_error("set_kind_ranges: kinds are not grouped in storage");
 }
 
 std::vector<std::size_t> ParticleStore::storage_of_id() const {

@@ -3,61 +3,146 @@
 // order [wall | elastic | rigid body 0 | rigid body 1 | ...] so hot loops run
 // over index ranges. Stable ids (creation order) are separate from storage
 // order; outputs are written in id order.
+//
+// Every per-particle array is one line of MPSOLID_PARTICLE_ARRAYS below; the
+// store's members, resize, the state copies (snapshots, checkpoints, the
+// slices that move between ranks), a rank's part and the Python views are
+// all derived from it. Adding an array is adding its line.
+#include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "src/core/types.hpp"
 
 namespace mpsolid {
 
+// What an array is to the solver, which decides where it goes.
+enum class ArrayRole : std::int8_t {
+  state,      // evolves in time: snapshots, checkpoints and the ranks' slices copy it
+  reference,  // the set-up configuration
+  work,       // recomputed from the state every step
+  constant,   // fixed at set-up
+};
+
+const char* role_name(ArrayRole role);
+
+// The table: member, the name files and Python know it by, element type,
+// role, the value resize gives it, and what it holds. Kept in the order
+// checkpoints list the state arrays.
+// clang-format off
+#define MPSOLID_PARTICLE_ARRAYS(X)                                                              \
+  X(x,           "x",           double,       state,     0.0,           "position x (m)")          \
+  X(y,           "y",           double,       state,     0.0,           "position y (m)")          \
+  X(vx,          "vx",          double,       state,     0.0,           "velocity x (m/s)")        \
+  X(vy,          "vy",          double,       state,     0.0,           "velocity y (m/s)")        \
+  X(theta,       "theta",       double,       state,     0.0,           "rotation angle (rad)")    \
+  X(omega,       "omega",       double,       state,     0.0,           "angular velocity (rad/s)") \
+  X(x0,          "x0",          double,       reference, 0.0,           "reference position x (m)") \
+  X(y0,          "y0",          double,       reference, 0.0,           "reference position y (m)") \
+  X(half_cos,    "half_cos",    double,       work,      1.0,           "cos(theta/2)")            \
+  X(half_sin,    "half_sin",    double,       work,      0.0,           "sin(theta/2)")            \
+  X(strain,      "strain",      double,       work,      0.0,           "volumetric strain")       \
+  X(pressure,    "pressure",    double,       work,      0.0,           "pressure (Pa)")           \
+  X(fx,          "fx",          double,       work,      0.0,           "force x (N, over the depth)") \
+  X(fy,          "fy",          double,       work,      0.0,           "force y (N, over the depth)") \
+  X(torque,      "torque",      double,       work,      0.0,           "torque (N m)")            \
+  X(inv_mass,    "inv_mass",    double,       constant,  0.0,           "1 / mass (1/kg)")         \
+  X(inv_inertia, "inv_inertia", double,       constant,  0.0,           "1 / moment of inertia (1/(kg m^2))") \
+  X(lambda,      "lambda",      double,       constant,  0.0,           "Lame lambda of the material (Pa)") \
+  X(mu,          "mu",          double,       constant,  0.0,           "Lame mu of the material (Pa)") \
+  X(id,          "ids",         std::int32_t, constant,  0,             "stable id (creation order)") \
+  X(body,        "bodies",      std::int32_t, constant,  0,             "body index (case order)") \
+  X(material,    "materials",   std::int32_t, constant,  0,             "material index")          \
+  X(kind,        "kinds",       Kind,         constant,  Kind::elastic, "kind as its integer (KIND_NAMES names it)")
+// clang-format on
+
 struct ParticleStore {
-  // State.
-  std::vector<double> x, y;    // position (m)
-  std::vector<double> vx, vy;  // velocity (m/s)
-  std::vector<double> theta;   // rotation angle (rad)
-  std::vector<double> omega;   // angular velocity (rad/s)
-
-  // Reference configuration.
-  std::vector<double> x0, y0;
-
-  // Per-step work arrays.
-  std::vector<double> half_cos, half_sin;  // cos(theta/2), sin(theta/2)
-  std::vector<double> strain;              // volumetric strain eps_i
-  std::vector<double> pressure;            // p_i = -lambda_i eps_i
-  std::vector<double> fx, fy;              // force (N, over the depth)
-  std::vector<double> torque;              // torque (N m)
-
-  // Constants.
-  std::vector<double> inv_mass, inv_inertia;
-  std::vector<double> lambda;  // Lame lambda of the particle's material
-  std::vector<double> mu;      // Lame mu of the particle's material
-  std::vector<std::int32_t> id, body, material;
-  std::vector<Kind> kind;
+#define MPSOLID_DECLARE_ARRAY(member, name, type, role, initial, what) std::vector<type> member;
+  MPSOLID_PARTICLE_ARRAYS(MPSOLID_DECLARE_ARRAY)
+#undef MPSOLID_DECLARE_ARRAY
 
   // Storage ranges by kind.
   Range walls, elastic, rigid;
 
-  std::size_t size() const { return x.size(); }
+  std::size_t size() const {
+    return x.size();
+  }
   // Particles whose motion is integrated (elastic and rigid).
-  Range moving() const { return {elastic.begin, rigid.end}; }
-  Range all() const { return {0, size()}; }
+  Range moving() const {
+    return {elastic.begin, rigid.end};
+  }
+  Range all() const {
+    return {0, size()};
+  }
 
+  // Every array n values of its initial value.
   void resize(std::size_t n);
+  // The kind ranges (walls, elastic, rigid) from the kinds, which must be
+  // grouped in storage; an empty group sits at its neighbours' boundary.
+  void set_kind_ranges();
   // Storage index of each id (inverse of `id`).
   std::vector<std::size_t> storage_of_id() const;
 };
 
-// The per-particle arrays that evolve in time: positions, velocities,
-// rotations and angular velocities. The rest of the store is constant from
-// set-up (x0, masses, ids, ...) or recomputed from these every step (half
-// angles, strain, pressure, forces, torques). Snapshots and checkpoints copy
-// exactly these; a model with per-particle state of its own adds it here.
+// One row of the table, as data.
+template <class T>
+struct ParticleArrayInfo {
+  using value_type = T;
+  const char* name;
+  ArrayRole role;
+  T initial;
+  const char* what;
+};
+
+// Calls f(ParticleArrayInfo<T>, std::vector<T> ParticleStore::*) for every
+// row of the table, in order.
+template <class F>
+constexpr void for_each_particle_member(F&& f) {
+#define MPSOLID_VISIT_ARRAY(member, name, type, role, initial, what) \
+  f(ParticleArrayInfo<type>{name, ArrayRole::role, initial, what}, &ParticleStore::member);
+  MPSOLID_PARTICLE_ARRAYS(MPSOLID_VISIT_ARRAY)
+#undef MPSOLID_VISIT_ARRAY
+}
+
+// Calls f(ParticleArrayInfo<T>, array) for every array of `p` (const or
+// not), in the table's order.
+template <class Store, class F>
+void for_each_particle_array(Store& p, F&& f) {
+  for_each_particle_member([&](const auto& info, auto member) { f(info, p.*member); });
+}
+
+// The arrays of the state role (all of them double), by name: what
+// snapshots, checkpoints and the ranks' slices copy.
 struct StateArray {
   const char* name;
   std::vector<double> ParticleStore::*member;
 };
-inline constexpr StateArray kStateArrays[] = {
-    {"x", &ParticleStore::x},   {"y", &ParticleStore::y},         {"vx", &ParticleStore::vx},
-    {"vy", &ParticleStore::vy}, {"theta", &ParticleStore::theta}, {"omega", &ParticleStore::omega}};
+namespace detail {
+template <class T>
+inline constexpr bool holds_doubles = std::is_same_v<typename T::value_type, double>;
+// How many rows of the table have the state role.
+inline constexpr std::size_t kStateRows = [] {
+  std::size_t n = 0;
+  for_each_particle_member([&](const auto& info, auto) { n += info.role == ArrayRole::state; });
+  return n;
+}();
+}  // namespace detail
+inline constexpr auto kStateArrays = [] {
+  std::array<StateArray, detail::kStateRows> out{};
+  std::size_t k = 0;
+  for_each_particle_member([&](const auto& info, auto member) {
+    if constexpr (detail::holds_doubles<std::decay_t<decltype(info)>>)
+      if (info.role == ArrayRole::state) out[k++] = {info.name, member};
+  });
+  return out;
+}();
+static_assert(
+    [] {
+      for (const StateArray& a : kStateArrays)
+        if (a.member == nullptr) return false;
+      return true;
+    }(),
+    "a state array must hold doubles");
 
 }  // namespace mpsolid

@@ -38,29 +38,11 @@ ParticleStore local_particles(const ParticleStore& global, const LocalLayout& la
   p.resize(layout.size());
   for (std::size_t k = 0; k < layout.size(); ++k) {
     const std::size_t g = layout.global_of[k];
-    for (const auto member : kParticleDoubleArrays) (p.*member)[k] = (global.*member)[g];
-    p.id[k] = global.id[g];
-    p.body[k] = global.body[g];
-    p.material[k] = global.material[g];
-    p.kind[k] = global.kind[g];
+    for_each_particle_member(
+        [&](const auto&, auto member) { (p.*member)[k] = (global.*member)[g]; });
   }
-  set_kind_ranges(p);
+  p.set_kind_ranges();
   return p;
-}
-
-void set_kind_ranges(ParticleStore& p) {
-  // Kinds are grouped [wall | elastic | rigid] globally, hence locally too.
-  const auto first_not = [&](std::size_t from, Kind kind) {
-    while (from < p.size() && p.kind[from] == kind) ++from;
-    return from;
-  };
-  const std::size_t walls_end = first_not(0, Kind::wall);
-  const std::size_t elastic_end = first_not(walls_end, Kind::elastic);
-  p.walls = {0, walls_end};
-  p.elastic = {walls_end, elastic_end};
-  p.rigid = {elastic_end, first_not(elastic_end, Kind::rigid)};
-  if (p.rigid.end != p.size())
-    throw std::logic_error("local_particles: kinds are not grouped in storage");
 }
 
 BondTable local_bonds(const BondTable& global, const ParticleStore& local,

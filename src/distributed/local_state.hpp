@@ -33,22 +33,9 @@ struct LocalLayout {
 LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
                          const std::vector<std::uint32_t>& also = {});
 
-// Every double array of the particle store (the integer ones are id, body,
-// material and kind).
-inline constexpr std::vector<double> ParticleStore::*kParticleDoubleArrays[] = {
-    &ParticleStore::x,        &ParticleStore::y,           &ParticleStore::vx,
-    &ParticleStore::vy,       &ParticleStore::theta,       &ParticleStore::omega,
-    &ParticleStore::x0,       &ParticleStore::y0,          &ParticleStore::half_cos,
-    &ParticleStore::half_sin, &ParticleStore::strain,      &ParticleStore::pressure,
-    &ParticleStore::fx,       &ParticleStore::fy,          &ParticleStore::torque,
-    &ParticleStore::inv_mass, &ParticleStore::inv_inertia, &ParticleStore::lambda,
-    &ParticleStore::mu};
-
 // The layout's particles, every array copied, the kind ranges recomputed
 // (storage is grouped by kind, and the global order is kept).
 ParticleStore local_particles(const ParticleStore& global, const LocalLayout& layout);
-// The kind ranges (walls, elastic, rigid) from the kinds, which storage groups.
-void set_kind_ranges(ParticleStore& p);
 
 // The layout's bond table in local indices: whole rows for owned
 // particles, bonds to owned particles for ghosts; reference vectors from

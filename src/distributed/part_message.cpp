@@ -3,10 +3,27 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace mpsolid {
 
 namespace {
+// Message values are doubles; enumerations travel as their integers.
+template <class T>
+double as_double(T v) {
+  if constexpr (std::is_enum_v<T>)
+    return static_cast<double>(static_cast<std::underlying_type_t<T>>(v));
+  else
+    return static_cast<double>(v);
+}
+template <class T>
+T from_double(double v) {
+  if constexpr (std::is_enum_v<T>)
+    return static_cast<T>(static_cast<std::underlying_type_t<T>>(v));
+  else
+    return static_cast<T>(v);
+}
+
 // Values into pieces of at most kPartPieceValues, each sent when full.
 class Writer {
  public:
@@ -23,7 +40,7 @@ class Writer {
   template <class T>
   void put(const std::vector<T>& v) {
     put(static_cast<double>(v.size()));
-    for (const T& x : v) put(static_cast<double>(x));
+    for (const T& x : v) put(as_double(x));
   }
   void put(const std::string& s) { put(std::vector<char>(s.begin(), s.end())); }
   void put(Range r) {
@@ -54,7 +71,7 @@ class Reader {
   template <class T>
   std::vector<T> get_vector() {
     std::vector<T> v(get_as<std::size_t>());
-    for (T& x : v) x = static_cast<T>(get());
+    for (T& x : v) x = from_double<T>(get());
     return v;
   }
   std::string get_string() {
@@ -86,22 +103,14 @@ class Reader {
 };
 
 void put_particles(Writer& w, const ParticleStore& p) {
-  for (const auto member : kParticleDoubleArrays) w.put(p.*member);
-  w.put(p.id);
-  w.put(p.body);
-  w.put(p.material);
-  std::vector<std::int32_t> kinds;
-  for (const Kind k : p.kind) kinds.push_back(static_cast<std::int32_t>(k));
-  w.put(kinds);
+  for_each_particle_array(p, [&](const auto&, const auto& v) { w.put(v); });
 }
 ParticleStore get_particles(Reader& r) {
   ParticleStore p;
-  for (const auto member : kParticleDoubleArrays) p.*member = r.get_vector<double>();
-  p.id = r.get_vector<std::int32_t>();
-  p.body = r.get_vector<std::int32_t>();
-  p.material = r.get_vector<std::int32_t>();
-  for (const std::int32_t k : r.get_vector<std::int32_t>()) p.kind.push_back(static_cast<Kind>(k));
-  set_kind_ranges(p);
+  for_each_particle_array(p, [&](const auto&, auto& v) {
+    v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
+  });
+  p.set_kind_ranges();
   return p;
 }
 

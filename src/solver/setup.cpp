@@ -64,22 +64,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
       ++next;
     }
   }
-  const auto kind_range = [&](Kind kind) {
-    Range r{p.size(), p.size()};
-    for (std::size_t i = 0; i < p.size(); ++i)
-      if (p.kind[i] == kind) {
-        r.begin = std::min(r.begin, i);
-        r.end = i + 1;
-      }
-    return r;
-  };
-  p.walls = kind_range(Kind::wall);
-  p.elastic = kind_range(Kind::elastic);
-  p.rigid = kind_range(Kind::rigid);
-  // Empty groups sit at the boundary of their neighbours.
-  if (p.walls.empty()) p.walls = {0, 0};
-  if (p.elastic.empty()) p.elastic = {p.walls.end, p.walls.end};
-  if (p.rigid.empty()) p.rigid = {p.elastic.end, p.elastic.end};
+  p.set_kind_ranges();
 
   {
     auto t = timers.time(Phase::neighbors);

@@ -67,13 +67,14 @@ double max_abs(const std::vector<double>& v) {
 }
 
 bool same_bits(const ParticleStore& a, const ParticleStore& b) {
-  auto same = [](const std::vector<double>& u, const std::vector<double>& v) {
-    return u.size() == v.size() && std::memcmp(u.data(), v.data(), u.size() * sizeof(double)) == 0;
-  };
-  return same(a.x, b.x) && same(a.y, b.y) && same(a.vx, b.vx) && same(a.vy, b.vy) &&
-         same(a.theta, b.theta) && same(a.omega, b.omega) && same(a.strain, b.strain) &&
-         same(a.pressure, b.pressure) && same(a.fx, b.fx) && same(a.fy, b.fy) &&
-         same(a.torque, b.torque);
+  bool same = true;
+  for_each_particle_member([&](const auto& info, auto member) {
+    const auto &u = a.*member, &v = b.*member;
+    if (info.role == ArrayRole::state || info.role == ArrayRole::work)
+      same = same && u.size() == v.size() &&
+             (u.empty() || std::memcmp(u.data(), v.data(), u.size() * sizeof(u[0])) == 0);
+  });
+  return same;
 }
 
 }  // namespace mpsolid::testing

@@ -35,7 +35,7 @@ void run_model_passes(ParticleStore& p, const BondTable& bonds) {
 // Largest magnitude in v (0 for an empty v).
 double max_abs(const std::vector<double>& v);
 
-// Every state array of two stores is equal bit for bit.
+// Every state and work array of two stores is equal bit for bit.
 bool same_bits(const ParticleStore& a, const ParticleStore& b);
 
 }  // namespace mpsolid::testing

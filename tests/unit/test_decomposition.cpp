@@ -325,11 +325,9 @@ TEST(Decomposition, APartSentInPiecesArrivesWhole) {
     EXPECT_EQ(got.halo.send, sent.halo.send);
     EXPECT_EQ(got.halo.receive, sent.halo.receive);
     const ParticleStore &a = got.state.particles, &b = sent.state.particles;
-    for (const auto member : kParticleDoubleArrays) EXPECT_TRUE(same(a.*member, b.*member));
-    EXPECT_EQ(a.id, b.id);
-    EXPECT_EQ(a.body, b.body);
-    EXPECT_EQ(a.material, b.material);
-    EXPECT_EQ(a.kind, b.kind);
+    for_each_particle_member([&](const auto& info, auto member) {
+      EXPECT_TRUE(same(a.*member, b.*member)) << info.name;
+    });
     EXPECT_EQ(a.elastic.begin, b.elastic.begin);
     EXPECT_EQ(a.rigid.end, b.rigid.end);
     const BondTable &ga = got.state.bonds, &gb = sent.state.bonds;
