@@ -538,6 +538,34 @@ def draw_colourbar(fig, mappable, scale, layout):
             "data_range": scale["data_range"], "extend": extend}
 
 
+def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l0, blowup):
+    """Every frame's panel, the last one marked after a blow-up; returns the
+    panels' descriptions and the field's scatter (None without a field)."""
+    # Dots about one lattice spacing across.
+    points_per_mm = layout.panel_w * 72.0 / view.width
+    size = (0.9 * l0 * 1e3 * points_per_mm) ** 2
+    norm = Normalize(vmin=-scale["limit"], vmax=scale["limit"]) if field else None
+    panels, mappable = [], None
+    for k, frame in enumerate(frames):
+        ax = fig.add_axes(layout.panel_box(k))
+        drawn = draw_particles(ax, frame, view, colours, kinds, field, scale, norm, size)
+        mappable = drawn if drawn is not None else mappable
+        frame_axes(ax, view.across, view.down, labelsize=8, ticklength=3)
+        label = f"t = {ms(frame.time)}"
+        label_frame_panel(ax, k, layout, view, label)
+        r, c = layout.place(k)
+        panel = {"time": frame.time, "title": label, "row": r, "column": c,
+                 "last_good_state": False}
+        if blowup and k == len(frames) - 1:
+            panel["last_good_state"] = True
+            ring = mark_last_good_state(ax, label, blowup, view,
+                                        (6 * l0 * 1e3 * points_per_mm) ** 2)
+            if ring is not None:
+                panel["ring_mm"] = ring
+        panels.append(panel)
+    return panels, mappable
+
+
 def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blowup, footnote):
     """Writes FOLDER/frames.png: the frames in a grid, one colour scale over
     every panel (or body colours), and returns what was drawn."""
@@ -557,30 +585,8 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     legend_columns, legend_rows = legend_shape(labels, layout.fig_w)
     layout.set_height(top + 0.12, 0.62 + 0.36 * legend_rows + 0.14 + 0.12 * len(notes))
     fig = Figure(figsize=(layout.fig_w, layout.fig_h))
-
-    # Dots about one lattice spacing across.
-    points_per_mm = layout.panel_w * 72.0 / view.width
-    size = (0.9 * l0 * 1e3 * points_per_mm) ** 2
-    norm = Normalize(vmin=-scale["limit"], vmax=scale["limit"]) if field else None
-    panels, mappable = [], None
-    for k, frame in enumerate(frames):
-        ax = fig.add_axes(layout.panel_box(k))
-        drawn = draw_particles(ax, frame, view, colours, kinds, field, scale, norm, size)
-        mappable = drawn if drawn is not None else mappable
-        frame_axes(ax, view.across, view.down, labelsize=8, ticklength=3)
-        label = f"t = {ms(frame.time)}"
-        label_frame_panel(ax, k, layout, view, label)
-        r, c = layout.place(k)
-        panel = {"time": frame.time, "title": label, "row": r, "column": c,
-                 "last_good_state": False}
-        if blowup and k == n - 1:
-            panel["last_good_state"] = True
-            ring = mark_last_good_state(ax, label, blowup, view,
-                                        (6 * l0 * 1e3 * points_per_mm) ** 2)
-            if ring is not None:
-                panel["ring_mm"] = ring
-        panels.append(panel)
-
+    panels, mappable = draw_frame_panels(fig, frames, layout, view, colours, kinds, field,
+                                         scale, l0, blowup)
     fig.legend(handles, labels, loc="lower center", ncol=legend_columns, frameon=False,
                fontsize=9.5, bbox_to_anchor=(0.5, (0.1 + 0.12 * len(notes)) / layout.fig_h))
     colorbar = draw_colourbar(fig, mappable, scale, layout) if mappable is not None else None
