@@ -28,7 +28,7 @@ void run_kernel(benchmark::State& state, Kernel kernel, const std::string& model
   set_thread_count(threads);
   Simulation sim(rod(l0_um, model_name));
   sim.advance(10);  // a deformed, rotated state
-  SolverState& s = sim.state();
+  SolverState& s = sim.state_to_change();
   ParticleStore& p = s.particles;
   AnyModel any = make_model(model_name, p, s.bonds, sim.spec().model_options);
   const FlopCounts f = flop_counts(model_name);

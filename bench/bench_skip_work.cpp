@@ -46,7 +46,7 @@ void run_steps(benchmark::State& state, const CaseSpec& spec, int threads) {
 void run_integrate(benchmark::State& state, long l0_um, bool rotation, int threads) {
   set_thread_count(threads);
   Simulation sim(rod(l0_um, "paper"));
-  SolverState& s = sim.state();
+  SolverState& s = sim.state_to_change();
   ParticleStore& p = s.particles;
   for (auto* v : {&p.fx, &p.fy, &p.torque}) std::fill(v->begin(), v->end(), 0.0);
   BodyKicks kicks(s.rigid_bodies.size());

@@ -124,16 +124,14 @@ int main(int argc, char** argv) {
                  "cores); start it without mpirun\n");
     return kExitBadInput;
   }
-  set_ranked_runs(world.size() > 1);
   if (world.size() > 1 && world.rank() > 0) {
     install_stop_handlers();  // a batch system's SIGTERM reaches every rank: rank 0 stops the run
     set_thread_count(choose_threads(threads, available_cores()).threads);
-    return follow_rank_zero();
+    return follow_rank_zero(world);
   }
-  // However rank 0 leaves, the followers are released.
-  struct ReleaseFollowers {
-    ~ReleaseFollowers() { followers::release(); }
-  } release_followers;
+  // However rank 0 leaves, the followers are released (its destructor).
+  std::optional<Followers> followers;
+  if (world.size() > 1) followers.emplace(world);
 
   if (study->parsed()) return launch_study(study->remaining());
 
@@ -147,6 +145,7 @@ int main(int argc, char** argv) {
     options.progress = stderr_is_terminal();
     options.command_line = command_line;
     options.overrides = overrides;
+    options.followers = followers ? &*followers : nullptr;
     if (resume->parsed()) {
       options.out_dir = resume_dir;
       return resume_run(overrides, options);

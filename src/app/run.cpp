@@ -30,11 +30,11 @@
 namespace mpsolid {
 
 namespace {
-std::string body_of(const Simulation& sim, std::size_t i) {
+std::string body_of(Simulation& sim, std::size_t i) {
   return sim.spec().bodies[static_cast<std::size_t>(sim.particles().body[i])].name;
 }
 
-std::string describe_particle(const Simulation& sim, std::size_t i) {
+std::string describe_particle(Simulation& sim, std::size_t i) {
   const ParticleStore& p = sim.particles();
   return fmt::format(
       "particle {} (body {}, initial position ({:.4g}, {:.4g}) mm, now ({:.4g}, "
@@ -43,7 +43,7 @@ std::string describe_particle(const Simulation& sim, std::size_t i) {
 }
 
 // Where, when and which criterion, in words (the state is the failing one).
-std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
+std::string describe_failure(Simulation& sim, const StabilityVerdict& v,
                              std::int64_t last_good_step) {
   std::string text = fmt::format(
       "{} at t = {:.6g} s (step {}, checked every {} steps; last good "
@@ -55,7 +55,7 @@ std::string describe_failure(const Simulation& sim, const StabilityVerdict& v,
   return text;
 }
 
-Json failure_json(const Simulation& sim, const StabilityVerdict& v, std::int64_t last_good_step) {
+Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_good_step) {
   const ParticleStore& p = sim.particles();
   const std::size_t i = v.particle;
   return {{"criterion", v.criterion},
@@ -71,11 +71,11 @@ Json failure_json(const Simulation& sim, const StabilityVerdict& v, std::int64_t
           {"last_good_time", sim.spec().time_at(last_good_step)}};
 }
 
-RunReportInputs report_inputs(const Simulation& sim) {
+RunReportInputs report_inputs(Simulation& sim) {
   return {sim.spec(), sim.state(), sim.timers(), sim.stable_step()};
 }
 
-void print_summary(const Simulation& sim, const RunFacts& facts, const RunOptions& options) {
+void print_summary(Simulation& sim, const RunFacts& facts, const RunOptions& options) {
   const double rate =
       facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0;
   fmt::print("mpsolid: {} ({} model) {}: {} steps to t = {:.6g} s in {:.3g} s wall, {} threads\n",
@@ -139,14 +139,11 @@ struct Cadences {
 // its first frame and checkpoint. Fills the outcome (and diagnosis) in `facts`.
 void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
                  bool fresh) {
-  // Reads go through `view`: a change through `sim` would send the ranks
-  // their slices again before the next step.
-  const Simulation& view = sim;
-  const Cadences every(sim.spec(), view.particles().size());
+  const Cadences every(sim.spec(), sim.particle_count());
   // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(view.state(), sim.spec(), d);
+    outputs.write_frame(sim.state(), sim.spec(), d);
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {
@@ -160,7 +157,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     write_frame(sim.diagnostics());
     checkpoint();
   }
-  StateSnapshot last_good = StateSnapshot::capture(view.state());
+  StateSnapshot last_good = StateSnapshot::capture(sim.state());
   facts.outcome = Outcome::completed;
   ThreadGovernor governor(facts.threads, options.adaptive_threads);
   while (sim.step() < every.total) {
@@ -184,16 +181,16 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       facts.diagnosis = describe_failure(sim, verdict, last_good.step);
       facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
       // Keep the last good state as the final frame of the outputs.
-      last_good.restore(sim.state());
+      last_good.restore(sim.state_to_change());
       if (sim.step() != outputs.last_frame_step()) write_frame(sim.diagnostics());
       break;
     }
-    last_good = StateSnapshot::capture(view.state());
+    last_good = StateSnapshot::capture(sim.state());
     const std::int64_t step = sim.step();
     if (step == every.total || step % every.frame == 0) write_frame(d);
     if (step % every.history == 0) {
       auto t = sim.timers().time(Phase::output);
-      outputs.write_history(view.state(), sim.spec(), d);
+      outputs.write_history(sim.state(), sim.spec(), d);
     }
     if (step == every.total) break;
     if (every.checkpoint > 0 && step % every.checkpoint == 0 &&
@@ -292,7 +289,7 @@ RunFacts begin_segment(const RunOptions& options, std::int64_t start_step) {
 // what is intact. Bad input passes through as it is.
 // The outputs of `dir` continued from `from`; a refused resume leaves the
 // folder as it was (the staging copies it made are removed).
-RunFolder resumed_outputs(const std::filesystem::path& dir, const Simulation& sim,
+RunFolder resumed_outputs(const std::filesystem::path& dir, Simulation& sim,
                           const Checkpoint& from) {
   try {
     return RunFolder(dir, sim.state(), sim.spec(), from);
@@ -348,11 +345,11 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
     refuse_earlier_results(options);
   };
   if (std::filesystem::is_directory(options.out_dir)) lock_and_check();
-  Simulation sim(spec);
+  Simulation sim(spec, options.followers);
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {
-    RunFolder outputs(options.out_dir, std::as_const(sim).state(), sim.spec());
+    RunFolder outputs(options.out_dir, sim.state(), sim.spec());
     lock->record_owner();
     return run_loop(sim, outputs, facts, options, true);
   });
@@ -386,8 +383,8 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
 
   RunFacts facts = begin_segment(options, checkpoint.step);
   check_memory(spec, available_memory_bytes());
-  Simulation sim(spec);
-  restore_state(sim.state(), checkpoint, path.string());
+  Simulation sim(spec, options.followers);
+  restore_state(sim.state_to_change(), checkpoint, path.string());
   return with_failed_writes_explained(options.out_dir, [&] {
     RunFolder outputs = resumed_outputs(options.out_dir, sim, checkpoint);
     if (lock) lock->record_owner();

@@ -10,6 +10,8 @@
 
 namespace mpsolid {
 
+class Followers;
+
 struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 1;
@@ -18,6 +20,7 @@ struct RunOptions {
   bool adaptive_threads = true;  // fewer threads when waiting makes them slower (thread_governor)
   std::string command_line;
   std::vector<std::string> overrides;  // the --set values, for run.json
+  Followers* followers = nullptr;      // rank 0 of several MPI ranks: the run steps over them
 };
 
 // out/<case name>, with a short hash of the overrides when there are any, so

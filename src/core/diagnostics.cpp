@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "src/core/ordered_sum.hpp"
+
 namespace mpsolid {
 
 Diagnostics motion_diagnostics(const ParticleStore& p) {

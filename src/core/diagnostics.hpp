@@ -21,25 +21,8 @@ struct Diagnostics {
 // Kinetic energy, momenta and max speed of the moving particles.
 Diagnostics motion_diagnostics(const ParticleStore& p);
 
-// Everything; `particle_energy(i)` is the model's strain energy of particle i
-// (the strain pass must be current).
-template <class ParticleEnergy>
-Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy);
-
-// The same with the strain energy already summed (over MPI ranks, from the
-// ranks' chunk sums).
+// Everything, with the model's strain energy already summed (in the ordered
+// sums' chunk order, on one rank or from the ranks' chunk sums).
 Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_energy);
 
-}  // namespace mpsolid
-
-#include "src/core/ordered_sum.hpp"
-
-namespace mpsolid {
-template <class ParticleEnergy>
-Diagnostics compute_diagnostics(const SolverState& s, ParticleEnergy&& particle_energy) {
-  return diagnostics_with_strain_energy(s,
-                                        ordered_sum<1>(0, s.particles.size(), [&](std::size_t i) {
-                                          return std::array<double, 1>{particle_energy(i)};
-                                        })[0]);
-}
 }  // namespace mpsolid

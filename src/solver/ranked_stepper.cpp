@@ -133,9 +133,6 @@ RankTimes read_report(const std::vector<double>& in, std::size_t at, int rank,
   return t;
 }
 
-// A follower's part was not sent: rank 0 refused the case (and reports it).
-struct CaseRefused {};
-
 InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
   return InputError(
       fmt::format("{}: {} over {} MPI ranks is not supported yet ({}); run it on one rank (without "
@@ -144,18 +141,85 @@ InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
 }
 }  // namespace
 
-RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
-    : parts_(std::make_unique<Parts>()) {
-  const Communicator& world = Communicator::world();
-  parts_->dt = spec.dt;
-  parts_->limits = {spec.stability.min_jacobian};
-  parts_->decomposition = decompose_state(global, world.size());
+namespace {
+// A part from rank 0 ready to step.
+std::unique_ptr<RankedStepper::Parts> make_parts(const CaseSpec& spec, LocalPart local) {
+  auto parts = std::make_unique<RankedStepper::Parts>();
+  parts->dt = spec.dt;
+  parts->limits = {spec.stability.min_jacobian};
+  parts->part = make_rank_part(spec, std::move(local));
+  parts->rebuilds_reported = parts->part.local.contact.rebuilds;
+  return parts;
+}
+
+// This rank's part of a batch: the steps, then (when brought back) its slice
+// and report (and fields) for rank 0.
+std::vector<double> step_and_report(RankedStepper::Parts& parts, const Communicator& world,
+                                    std::int64_t steps, Exchange how) {
+  RankPart& p = parts.part;
+  if (steps > 0) advance_rank_part(p, world, parts.dt, steps);
+  std::vector<double> back;
+  if (how.bring_back) {
+    Slice::append(p.local, p.layout.owned, back);
+    append_report(p, p.local.contact.rebuilds - parts.rebuilds_reported, back);
+    parts.rebuilds_reported = p.local.contact.rebuilds;
+  }
+  if (how.fields) append_rank_fields(p, world, parts.limits, back);
+  return back;
+}
+
+// A command is the steps and the exchange's flags in one number (-1: the
+// end).
+constexpr std::int64_t kExchangeFlags = 8;
+std::int64_t command_of(std::int64_t steps, Exchange how) {
+  return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
+         (how.fields ? 4 : 0);
+}
+std::int64_t steps_of(std::int64_t command) {
+  return command / kExchangeFlags;
+}
+Exchange exchange_of(std::int64_t command) {
+  const std::int64_t flags = command % kExchangeFlags;
+  return {(flags & 1) != 0, (flags & 2) != 0, (flags & 4) != 0};
+}
+}  // namespace
+
+void Followers::send_case(const std::string& resolved_toml) {
+  std::string text = resolved_toml;
+  world_.broadcast(text);
+  stage_ = Stage::stepping;
+}
+
+void Followers::send_command(std::int64_t steps, Exchange how) {
+  std::int64_t command = command_of(steps, how);
+  world_.broadcast(command);
+}
+
+void Followers::release() {
+  if (stage_ == Stage::released) return;
+  if (stage_ == Stage::before_case) {
+    std::string none;
+    world_.broadcast(none);
+  } else {
+    std::int64_t end = -1;
+    world_.broadcast(end);
+  }
+  stage_ = Stage::released;
+}
+
+RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Followers& followers)
+    : followers_(followers) {
+  const Communicator& world = followers.world();
+  // The case with the step chosen (the resolved case of an automatic step
+  // names it), then each follower's part.
+  followers.send_case(spec.resolved_toml);
+  const Decomposition decomposition = decompose_state(global, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   // Each follower's part, built and sent one at a time (rank 0 never holds
   // two); an empty message tells a follower the case was refused.
   for (int r = 1; r < world.size(); ++r) {
     try {
-      const LocalPart part = local_part(global, parts_->decomposition, r);
+      const LocalPart part = local_part(global, decomposition, r);
       pack_local_part(part, [&](const std::vector<double>& piece) { world.send(r, piece); });
     } catch (const std::invalid_argument& e) {
       for (int rest = r; rest < world.size(); ++rest) world.send(rest, {});
@@ -163,35 +227,39 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global)
     }
   }
   try {
-    parts_->part = make_rank_part(spec, local_part(global, parts_->decomposition, 0));
-    parts_->rebuilds_reported = parts_->part.local.contact.rebuilds;
+    parts_ = make_parts(spec, local_part(global, decomposition, 0));
   } catch (const std::invalid_argument& e) {
     throw refusal(spec, e.what(), world.size());
   }
-}
-
-RankedStepper::RankedStepper(const CaseSpec& spec) : parts_(std::make_unique<Parts>()) {
-  const Communicator& world = Communicator::world();
-  std::vector<double> first = world.receive(0);
-  if (first.empty()) throw CaseRefused{};
-  parts_->dt = spec.dt;
-  parts_->limits = {spec.stability.min_jacobian};
-  bool given = false;
-  parts_->part = make_rank_part(spec, unpack_local_part([&] {
-                                  if (given) return world.receive(0);
-                                  given = true;
-                                  return std::move(first);
-                                }));
-  parts_->rebuilds_reported = parts_->part.local.contact.rebuilds;
+  parts_->decomposition = decomposition;
 }
 
 RankedStepper::~RankedStepper() = default;
 
-RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, Exchange how) {
-  const Communicator& world = Communicator::world();
+void RankedStepper::advance(SolverState& global, std::int64_t steps, PhaseTimers&) {
+  exchange(global, steps, {.send_slices = ranks_behind_});
+  ranks_behind_ = false;
+  ranks_ahead_ = ranks_ahead_ || steps > 0;
+}
+
+void RankedStepper::refresh_fields(SolverState& global, PhaseTimers& timers) {
+  auto t = timers.time(Phase::strain);
+  fields_ = exchange(global, 0,
+                     {.send_slices = ranks_behind_, .bring_back = ranks_ahead_, .fields = true});
+  ranks_behind_ = ranks_ahead_ = false;
+}
+
+void RankedStepper::bring_to_rank_zero(SolverState& global) {
+  if (!ranks_ahead_) return;
+  exchange(global, 0, {.bring_back = true});
+  ranks_ahead_ = false;
+}
+
+RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exchange how) {
+  const Communicator& world = followers_.world();
   const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
-  followers::send_command(steps, how);
+  followers_.send_command(steps, how);
   if (how.send_slices) {
     for (int r = 1; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
@@ -207,7 +275,7 @@ RankFields RankedStepper::advance(SolverState& global, std::int64_t steps, Excha
     Slice::read(p.local, p.layout.owned, mine, at);
     p.local.step = global.step;
   }
-  std::vector<double> mine = step_and_report(steps, how);
+  std::vector<double> mine = step_and_report(*parts_, world, steps, how);
   global.step = p.local.step;
   RankFields out;
   if (!how.answered()) return out;
@@ -243,90 +311,6 @@ std::vector<RankTimes> RankedStepper::rank_times() const {
   return times;
 }
 
-void RankedStepper::follow(std::int64_t steps, Exchange how) {
-  const Communicator& world = Communicator::world();
-  RankPart& p = parts_->part;
-  if (how.send_slices) {
-    const std::vector<double> slice = world.receive(0);
-    p.local.step = static_cast<std::int64_t>(slice.at(0));
-    std::size_t at = 1;
-    Slice::read(p.local, p.layout.owned, slice, at);
-  }
-  const std::vector<double> back = step_and_report(steps, how);
-  if (how.answered()) world.send(0, back);
-}
-
-std::vector<double> RankedStepper::step_and_report(std::int64_t steps, Exchange how) {
-  const Communicator& world = Communicator::world();
-  RankPart& p = parts_->part;
-  if (steps > 0) advance_rank_part(p, world, parts_->dt, steps);
-  std::vector<double> back;
-  if (how.bring_back) {
-    Slice::append(p.local, p.layout.owned, back);
-    append_report(p, p.local.contact.rebuilds - parts_->rebuilds_reported, back);
-    parts_->rebuilds_reported = p.local.contact.rebuilds;
-  }
-  if (how.fields) append_rank_fields(p, world, parts_->limits, back);
-  return back;
-}
-
-namespace {
-bool ranked_runs_on = false;
-}  // namespace
-
-void set_ranked_runs(bool on) {
-  ranked_runs_on = on;
-}
-bool ranked_runs() {
-  return ranked_runs_on && Communicator::world().size() > 1;
-}
-
-namespace followers {
-namespace {
-enum class Stage { before_case, stepping, released };
-Stage stage = Stage::before_case;
-
-// A command is the steps and the exchange's flags in one number (-1: the
-// end).
-constexpr std::int64_t kExchangeFlags = 8;
-std::int64_t command_of(std::int64_t steps, RankedStepper::Exchange how) {
-  return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
-         (how.fields ? 4 : 0);
-}
-std::int64_t steps_of(std::int64_t command) {
-  return command / kExchangeFlags;
-}
-RankedStepper::Exchange exchange_of(std::int64_t command) {
-  const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0, (flags & 2) != 0, (flags & 4) != 0};
-}
-}  // namespace
-
-void send_case(const std::string& resolved_toml) {
-  std::string text = resolved_toml;
-  Communicator::world().broadcast(text);
-  stage = Stage::stepping;
-}
-
-void send_command(std::int64_t steps, RankedStepper::Exchange how) {
-  std::int64_t command = command_of(steps, how);
-  Communicator::world().broadcast(command);
-}
-
-void release() {
-  const Communicator& world = Communicator::world();
-  if (world.size() == 1 || world.rank() != 0 || stage == Stage::released) return;
-  if (stage == Stage::before_case) {
-    std::string none;
-    world.broadcast(none);
-  } else {
-    std::int64_t end = -1;
-    world.broadcast(end);
-  }
-  stage = Stage::released;
-}
-}  // namespace followers
-
 namespace {
 // Bad input only a follower meets (rank 0 checked the case before sending
 // it, and waits for this rank) ends the job here, so no rank hangs.
@@ -336,8 +320,7 @@ namespace {
 }
 }  // namespace
 
-int follow_rank_zero() {
-  const Communicator& world = Communicator::world();
+int follow_rank_zero(const Communicator& world) {
   std::string text;
   world.broadcast(text);
   if (text.empty()) return 0;  // rank 0 stopped before its case
@@ -349,18 +332,32 @@ int follow_rank_zero() {
       end_job(world, fmt::format("rank {} cannot read rank 0's case: {}", world.rank(), e.what()));
     }
     set_flush_subnormals(spec.flush_subnormals);
-    std::unique_ptr<RankedStepper> stepper;
-    try {
-      stepper = std::make_unique<RankedStepper>(spec);
-    } catch (const CaseRefused&) {
-      // Rank 0 refused the case and reports it; wait to be released.
+    // An empty first message: rank 0 refused the case (and reports it).
+    std::vector<double> first = world.receive(0);
+    std::unique_ptr<RankedStepper::Parts> parts;
+    if (!first.empty()) {
+      bool given = false;
+      parts = make_parts(spec, unpack_local_part([&] {
+                           if (given) return world.receive(0);
+                           given = true;
+                           return std::move(first);
+                         }));
     }
     for (;;) {
       std::int64_t command = 0;
       world.broadcast(command);
-      if (command < 0) return stepper ? 0 : 2;
-      if (!stepper) throw std::logic_error("steps for a refused case");
-      stepper->follow(followers::steps_of(command), followers::exchange_of(command));
+      if (command < 0) return parts ? 0 : 2;
+      if (!parts) throw std::logic_error("steps for a refused case");
+      const Exchange how = exchange_of(command);
+      RankPart& p = parts->part;
+      if (how.send_slices) {
+        const std::vector<double> slice = world.receive(0);
+        p.local.step = static_cast<std::int64_t>(slice.at(0));
+        std::size_t at = 1;
+        Slice::read(p.local, p.layout.owned, slice, at);
+      }
+      const std::vector<double> back = step_and_report(*parts, world, steps_of(command), how);
+      if (how.answered()) world.send(0, back);
     }
   } catch (const InputError& e) {
     // This rank's own part is bad input (its model checks its particles,

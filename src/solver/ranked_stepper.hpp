@@ -11,7 +11,8 @@
 // rank count.
 //
 // Every model and contact are decomposed, each rigid or loaded body owned
-// by one rank.
+// by one rank. The command line makes rank 0's Followers; a Simulation given
+// them steps through a RankedStepper.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -24,77 +25,97 @@
 #include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/stepper.hpp"
 
 namespace mpsolid {
 
-class RankedStepper {
+// What a batch moves between rank 0 and the ranks besides the command.
+struct Exchange {
+  bool send_slices = false;  // before the steps: rank 0's copy changed
+  bool bring_back = false;   // after them: rank 0 reads the state
+  bool fields = false;       // and the fields of the current positions
+  // Whether each rank sends rank 0 a message after the steps.
+  bool answered() const { return bring_back || fields; }
+};
+
+// Rank 0's link to the other ranks: the case, then a command per batch, then
+// their release. Made by the command line under a launcher with several
+// ranks; its destructor releases the followers however rank 0 leaves.
+class Followers {
  public:
-  // Rank 0: cuts the set-up state `global`, sends every other rank its part
-  // and keeps its own. Throws InputError when the case cannot be decomposed
-  // (every follower is told, and waits to be released).
-  RankedStepper(const CaseSpec& spec, const SolverState& global);
-  // A follower: its part from rank 0. Throws InputError when rank 0 refused
-  // the case.
-  explicit RankedStepper(const CaseSpec& spec);
-  ~RankedStepper();
-  // What a batch moves between rank 0 and the ranks besides the command.
-  struct Exchange {
-    bool send_slices = false;  // before the steps: rank 0's copy changed
-    bool bring_back = false;   // after them: rank 0 reads the state
-    bool fields = false;       // and the fields of the current positions
-    // Whether each rank sends rank 0 a message after the steps.
-    bool answered() const { return bring_back || fields; }
-  };
-  // Rank 0: tells the followers; with `send_slices`, sends every rank its
-  // owned slice of `global` (its particles, bodies and loads); `steps`
-  // decomposed steps on every rank (0: none); with `bring_back`, the slices
-  // and each rank's report come back into `global`. With `fields`, every
-  // rank then runs the strain pass at the current positions and rank 0 gets
-  // the whole state's strain and pressure, the strain energy and the
-  // integrity check, as a one-rank refresh would give them (rank 0's
-  // positions must be the ranks'). `global.step` is the ranks' step either
-  // way.
-  RankFields advance(SolverState& global, std::int64_t steps, Exchange how);
-  // A follower's side of advance.
-  void follow(std::int64_t steps, Exchange how);
-  // Rank 0: every rank's times, halo cost and memory so far, as of the last
-  // batch that brought the slices back, and its slices' moves, for run.json.
-  std::vector<RankTimes> rank_times() const;
+  explicit Followers(const Communicator& world) : world_(world) {}
+  ~Followers() { release(); }
+  Followers(const Followers&) = delete;
+  Followers& operator=(const Followers&) = delete;
+
+  const Communicator& world() const { return world_; }
+  // Sends the case (its resolved TOML) to the followers; once per run.
+  void send_case(const std::string& resolved_toml);
+  // Tells the followers to step `steps` steps and what the batch moves.
+  void send_command(std::int64_t steps, Exchange how);
+  // Ends the followers: after the case, an end of steps; before it, an
+  // empty case. Idempotent.
+  void release();
 
  private:
-  // This rank's part of a batch: the steps, then (when brought back) its
-  // slice and report (and fields) for rank 0.
-  std::vector<double> step_and_report(std::int64_t steps, Exchange how);
-  struct Parts;
+  enum class Stage { before_case, stepping, released };
+  const Communicator& world_;
+  Stage stage_ = Stage::before_case;
+};
+
+// Rank 0's stepper over the ranks.
+class RankedStepper final : public Stepper {
+ public:
+  // Sends the followers the case and cuts the set-up state `global`, sending
+  // every other rank its part and keeping its own. Throws InputError when
+  // the case cannot be decomposed (every follower is told, and waits to be
+  // released).
+  RankedStepper(const CaseSpec& spec, const SolverState& global, Followers& followers);
+  ~RankedStepper() override;
+
+  // Every rank steps its own particles; they stay there until rank 0 reads
+  // the state (bring_to_rank_zero, refresh_fields). `global.step` follows.
+  void advance(SolverState& global, std::int64_t steps, PhaseTimers& timers) override;
+  // Every rank runs the strain pass at the current positions; rank 0 gets
+  // the whole state's strain and pressure (and the slices stepped since the
+  // last read), the strain energy and the integrity check, as a one-rank
+  // refresh would give them.
+  void refresh_fields(SolverState& global, PhaseTimers& timers) override;
+  double strain_energy(const SolverState&) const override { return fields_.strain_energy; }
+  IntegrityReport check_integrity(const SolverState&, const IntegrityLimits&) const override {
+    return fields_.integrity;
+  }
+  void bring_to_rank_zero(SolverState& global) override;
+  void state_changed() override { ranks_behind_ = true; }
+  // As of the last batch that brought the slices back, with the slices' moves.
+  std::vector<RankTimes> rank_times() const override;
+
+  struct Parts;  // a rank's part and what it needs to step it
+
+ private:
+  // Tells the followers; with `send_slices`, sends every rank its owned
+  // slice of `global` (its particles, bodies and loads); `steps` decomposed
+  // steps on every rank (0: none); with `bring_back`, the slices and each
+  // rank's report come back into `global`; with `fields`, the fields round.
+  RankFields exchange(SolverState& global, std::int64_t steps, Exchange how);
   // Counts a move of rank r's slice of `doubles` values.
   void count_slice_move(int r, std::size_t doubles);
+
+  Followers& followers_;
   std::unique_ptr<Parts> parts_;
   std::vector<RankTimes> rank_times_;
   struct SliceMoves {
     double moves = 0, bytes = 0;
   };
   std::vector<SliceMoves> slice_moves_;  // per rank
+  RankFields fields_;                    // of the last fields round
+  bool ranks_ahead_ = false;             // stepped since rank 0's copy was brought back
+  bool ranks_behind_ = false;            // rank 0's copy changed since they got it
 };
 
-// Whether simulations of this process step over the ranks: the command line
-// turns it on under a launcher with several ranks; off, every Simulation is
-// its own (as the rank tests' are).
-void set_ranked_runs(bool on);
-bool ranked_runs();
-
-// Rank 0's side of the conversation with the followers.
-namespace followers {
-// Sends the case (its resolved TOML) to the followers; once per run.
-void send_case(const std::string& resolved_toml);
-// Tells the followers to step `steps` steps and what the batch moves.
-void send_command(std::int64_t steps, RankedStepper::Exchange how);
-// Ends the followers: after the case, an end of steps; before it, an empty
-// case. Idempotent; rank 0's main calls it on every way out.
-void release();
-}  // namespace followers
-
-// A follower's whole life: receives the case, sets it up, and steps when
-// told until released. Returns its exit code (0; rank 0 reports failures).
-int follow_rank_zero();
+// A follower's whole life: receives the case, sets its part up, and steps
+// when rank 0 tells it until released. Returns its exit code (0; rank 0
+// reports failures).
+int follow_rank_zero(const Communicator& world);
 
 }  // namespace mpsolid

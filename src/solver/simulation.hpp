@@ -1,30 +1,31 @@
 #pragma once
-// A case set up and ready to step: the solver state, the chosen model and the
-// phase timers, its case fixed (dt chosen). The run loop with outputs lives in
-// src/app/run.hpp.
+// A case set up and ready to step: the solver state, its stepper (one rank or
+// over MPI ranks, src/solver/stepper.hpp) and the phase timers, its case
+// fixed (dt chosen). The run loop with outputs lives in src/app/run.hpp.
 #include <cstdint>
 #include <memory>
+#include <vector>
 
-#include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
 #include "src/core/diagnostics.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stability.hpp"
 #include "src/core/timers.hpp"
-#include "src/solver/ranked_stepper.hpp"
 #include "src/solver/stable_step.hpp"
+#include "src/solver/stepper.hpp"
 
 namespace mpsolid {
 
+class Followers;
+
 class Simulation {
  public:
-  // Under several MPI ranks, rank 0's simulation first sends the case to
-  // the followers (src/solver/ranked_stepper.hpp).
-  explicit Simulation(const CaseSpec& spec);
+  // With `followers` (rank 0 of several MPI ranks: src/solver/ranked_stepper.hpp)
+  // the case steps over the ranks; without, on this process.
+  explicit Simulation(const CaseSpec& spec, Followers* followers = nullptr);
 
-  // Advances `steps` time steps (no output); over several MPI ranks, every
-  // rank steps its own particles (rank 0 tells the followers to), and they
-  // stay there until the state is next read.
+  // Advances `steps` time steps (no output). Over ranks, the particles stay
+  // on their ranks until the state is next read.
   void advance(std::int64_t steps);
   // Recomputes the position-dependent fields (half angles, strain, pressure)
   // for the current state, as outputs and diagnostics need.
@@ -41,51 +42,35 @@ class Simulation {
 
   double time() const { return spec_.time_at(state_.step); }
   std::int64_t step() const { return state_.step; }
+  std::size_t particle_count() const { return state_.particles.size(); }
 
   const CaseSpec& spec() const { return spec_; }
-  // The state. Over several MPI ranks, the particles stepped since the last
-  // read come back to rank 0 first; after a change through the non-const
-  // overloads, the next step sends the ranks their slices again.
-  const SolverState& state() const {
-    bring_back();
-    return state_;
-  }
-  SolverState& state() {
-    bring_back();
-    ranks_behind_ = ranked_ != nullptr;
-    return state_;
-  }
-  const ParticleStore& particles() const { return state().particles; }
-  ParticleStore& particles() { return state().particles; }
+  // The current state. Over ranks, the particles stepped since the last
+  // read come back to rank 0 first.
+  const SolverState& state();
+  const ParticleStore& particles() { return state().particles; }
+  // The current state, to change (a restore): over ranks, the next step
+  // sends the ranks their slices of it again.
+  SolverState& state_to_change();
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
-  // Over several MPI ranks: each rank's halo cost so far (seconds, bytes
-  // sent); empty on one rank.
-  std::vector<RankTimes> rank_times() const {
-    return ranked_ ? ranked_->rank_times() : std::vector<RankTimes>{};
-  }
   const PhaseTimers& timers() const { return timers_; }
+  // Over several MPI ranks: each rank's times, halo cost and memory so far;
+  // empty on one rank.
+  std::vector<RankTimes> rank_times() const { return stepper_->rank_times(); }
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
-  // Over ranks: the particles stepped since rank 0's copy was last brought
-  // back come back to it.
-  void bring_back() const;
 
   CaseSpec spec_;
   PhaseTimers timers_;
-  // Over ranks, rank 0's copy of the state: a cache of the ranks' particles,
-  // brought back on a read (so a const read may fill it).
-  mutable SolverState state_;
-  AnyModel model_;
+  // Over ranks, rank 0's copy: current after state() or refresh_fields().
+  SolverState state_;
+  std::unique_ptr<Stepper> stepper_;
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
-  std::shared_ptr<RankedStepper> ranked_;  // several MPI ranks only
-  RankFields ranked_fields_;               // ... and the ranks' last fields
-  mutable bool ranks_ahead_ = false;       // stepped since state_ was brought back
-  bool ranks_behind_ = false;              // state_ may have changed since they got it
 };
 
 }  // namespace mpsolid

@@ -54,7 +54,7 @@ TEST(BondMath, WeightFunction) {
 // zero force, to first order in G.
 TEST(PaperModel, AffineDisplacementGivesAnalyticStrainInTheInterior) {
   Simulation sim(testing::free_block_case(24, 24, false));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const double g[2][2] = {{2.0e-6, 0.7e-6}, {-0.3e-6, -1.1e-6}};
   const double rotation = 0.5 * (g[1][0] - g[0][1]);
   const double trace = g[0][0] + g[1][1];

@@ -94,7 +94,7 @@ void expect_resume_is_seamless(const std::vector<std::string>& overrides, std::i
   set_thread_count(threads);
   const Checkpoint c = read_checkpoint(path);
   Simulation resumed(load_case_text(c.case_toml, path.string()));
-  restore_state(resumed.state(), c, path.string());
+  restore_state(resumed.state_to_change(), c, path.string());
   EXPECT_EQ(resumed.step(), first);
   resumed.advance(second);
   set_thread_count(1);
@@ -171,7 +171,7 @@ TEST(Checkpoint, RefusesAnotherBondTable) {
   write_checkpoint(path, c);
   Simulation fresh(testing::rod_case());
   try {
-    restore_state(fresh.state(), read_checkpoint(path), path.string());
+    restore_state(fresh.state_to_change(), read_checkpoint(path), path.string());
     FAIL() << "restored a checkpoint with another bond table";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bond table differs"), std::string::npos) << e.what();
@@ -212,13 +212,13 @@ TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {
   Checkpoint c = full_checkpoint(sim);
   Checkpoint missing = c;
   missing.particle_arrays.pop_back();
-  EXPECT_THROW(restore_state(sim.state(), missing, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state_to_change(), missing, "test"), InputError);
   Checkpoint shorter = c;
   for (auto& [name, values] : shorter.particle_arrays) values.pop_back();
-  EXPECT_THROW(restore_state(sim.state(), shorter, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state_to_change(), shorter, "test"), InputError);
   Checkpoint renamed = c;
   renamed.rigid_bodies[0].name = "lid";
-  EXPECT_THROW(restore_state(sim.state(), renamed, "test"), InputError);
+  EXPECT_THROW(restore_state(sim.state_to_change(), renamed, "test"), InputError);
 }
 
 TEST(Checkpoint, RefusesADamagedFile) {

@@ -102,7 +102,7 @@ double total_energy(const Diagnostics& d) {
 }
 
 // Mean velocity of a body's particles (equal masses: its centre of mass).
-std::array<double, 2> body_velocity(const Simulation& sim, std::size_t body) {
+std::array<double, 2> body_velocity(Simulation& sim, std::size_t body) {
   const Range r = sim.state().body_ranges[body];
   double vx = 0, vy = 0;
   for (std::size_t i = r.begin; i < r.end; ++i) {
@@ -114,8 +114,8 @@ std::array<double, 2> body_velocity(const Simulation& sim, std::size_t body) {
 
 TEST(Contact, PairForcesMatchAPlainAllPairsSumAndTheEnergyGradient) {
   Simulation sim(load_case_text(blocks_toml(0.003), "blocks.toml"));
-  ParticleStore& p = sim.particles();
-  ContactState& c = sim.state().contact;
+  ParticleStore& p = sim.state_to_change().particles;
+  ContactState& c = sim.state_to_change().contact;
   ASSERT_TRUE(c.enabled());
   // Push the right block into the left one: many pairs closer than d.
   const Range right = sim.state().body_ranges[1];
@@ -206,8 +206,8 @@ x = [0.0, 0.030]
 y = [0.0, 0.003]
 )";
   Simulation sim(load_case_text(contact_case(strip, "2e-7"), "strip.toml"));
-  ParticleStore& p = sim.particles();
-  ContactState& c = sim.state().contact;
+  ParticleStore& p = sim.state_to_change().particles;
+  ContactState& c = sim.state_to_change().contact;
   ASSERT_EQ(c.size(), p.size());  // three rows: every particle is on the surface
   // Fold it: the right half turned over onto the left, its top row 0.8 l0
   // above the left half's top row.
@@ -255,7 +255,7 @@ TEST(Contact, CandidatesAreTheOuterTwoRowsOfEachBody) {
 TEST(Contact, ForcesDoNotDependOnWhenTheListWasBuilt) {
   Simulation sim(load_case_text(blocks_toml(0.002), "blocks.toml"));
   sim.advance(1800);  // in contact
-  ContactState& c = sim.state().contact;
+  ContactState& c = sim.state_to_change().contact;
   const ParticleStore& p = sim.particles();
   compute_contact_forces(c, p, {c.first_moving, c.size()}, 1);
   ASSERT_NE(c.stale.step.load(), 1) << "the list must be valid here";
@@ -406,7 +406,7 @@ Outcome run_blocks(int threads, bool resume) {
   if (resume) {
     Checkpoint c = capture_state(sim.state());
     c.bond_hash = sim.state().bonds.hash();
-    restore_state(resumed.state(), c, "test");
+    restore_state(resumed.state_to_change(), c, "test");
     last = &resumed;
   }
   last->advance(2400);

@@ -60,7 +60,7 @@ TEST(Determinism, FinerRodIsBitIdenticalAt1To4ThreadsForEveryModel) {
 // Sets every particle moving and spinning (deterministic, varied values), so
 // rigid bodies turn and every rotation-dependent path is exercised.
 void stir(Simulation& sim) {
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const auto k = static_cast<double>(i);
     p.vx[i] = 0.5 * std::sin(1.3 * k);

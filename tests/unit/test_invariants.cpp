@@ -15,7 +15,7 @@ namespace {
 TEST(RigidMotion, TranslatedAndRotatedBlockIsStressFree) {
   for (double angle : {1.0, -2.5, 3.14159}) {
     Simulation sim(testing::free_block_case(12, 7, false));
-    ParticleStore& p = sim.particles();
+    ParticleStore& p = sim.state_to_change().particles;
     const double c = std::cos(angle), s = std::sin(angle);
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.x[i] = 0.37 + c * p.x0[i] - s * p.y0[i];
@@ -42,7 +42,7 @@ TEST(RigidMotion, TranslatedAndRotatedBlockIsStressFree) {
 }
 
 void randomize_motion(Simulation& sim, unsigned seed) {
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, 1.0);
   for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
@@ -50,7 +50,7 @@ void randomize_motion(Simulation& sim, unsigned seed) {
     p.vy[i] = 0.5 * n(rng);
     p.omega[i] = 200.0 * n(rng);
   }
-  for (RigidBody& body : sim.state().rigid_bodies) {
+  for (RigidBody& body : sim.state_to_change().rigid_bodies) {
     body.vx = 0.3;
     body.vy = -0.2;
     body.omega = 15.0;
@@ -121,7 +121,7 @@ TEST(Energy, SmallVibrationConservesKineticPlusStrainEnergy) {
   // (MODEL.md 4b), so KE + PE is constant up to O(strain) and O(dt). A
   // wrong factor in PE or in a force term breaks this at order 1.
   Simulation sim(testing::free_block_case(10, 8, true, 2.5e-8));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(5);
   std::normal_distribution<double> n(0.0, 1.0);
   for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {

@@ -17,7 +17,7 @@ namespace {
 
 TEST(PaperModel, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case());
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(3);
   std::normal_distribution<double> n(0.0, 1.0);
   const double l0 = sim.spec().l0;
@@ -92,7 +92,7 @@ PassResult per_entry_passes(const ParticleStore& p, const BondTable& bonds) {
 template <bool EnergyConsistent>
 void expect_slot_kernels_give_per_entry_bits(const CaseSpec& spec, bool prefetching = false) {
   Simulation sim(spec);
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(5);
   std::normal_distribution<double> n(0.0, 1.0);
   for (std::size_t i = p.moving().begin; i < p.size(); ++i) {

@@ -106,7 +106,7 @@ class LinearElasticForms : public ::testing::TestWithParam<bool> {};
 TEST_P(LinearElasticForms, KernelsMatchThePlainReference) {
   const bool consistent = GetParam();
   Simulation sim(testing::rod_case({"model=linear_elastic"}));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const BondTable& bonds = sim.state().bonds;
   jiggle(p, sim.spec().l0, 4);
   LinearElasticModel model(p, bonds, options_for(consistent));
@@ -146,7 +146,7 @@ TEST_P(LinearElasticForms, KernelsMatchThePlainReference) {
 TEST_P(LinearElasticForms, ForceIsTheNegativeEnergyGradientOnlyInTheConsistentForm) {
   const bool consistent = GetParam();
   Simulation sim(testing::free_block_case(8, 6, false, 1e-7, "linear_elastic"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const BondTable& bonds = sim.state().bonds;
   const double l0 = sim.spec().l0;
   jiggle(p, l0, 17);
@@ -188,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(Hourglass, LinearElasticForms, ::testing::Values(true, 
 // the stress is Hooke's law of eps = sym(F) - I.
 TEST(LinearElastic, AffineSmallDeformationGivesExactGradientAndHookesLaw) {
   Simulation sim(testing::free_block_case(12, 11, false, 1e-7, "linear_elastic"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const BondTable& bonds = sim.state().bonds;
   Matrix2d f;
   f << 1.0 + 2e-3, 1.5e-3, -0.7e-3, 1.0 - 1.2e-3;
@@ -225,7 +225,7 @@ TEST(LinearElastic, AffineSmallDeformationGivesExactGradientAndHookesLaw) {
 // max |f_linear - f_finite| / max |f_finite| under x = F x0.
 double relative_force_difference(const Matrix2d& f) {
   Simulation sim(testing::free_block_case(10, 8, false, 1e-7, "linear_elastic"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const BondTable& bonds = sim.state().bonds;
   deform_affinely(p, f, Vector2d(0.0, 0.0));
   LinearElasticModel linear(p, bonds, options_for(true));
@@ -260,7 +260,7 @@ TEST(LinearElastic, AgreesWithFiniteStrainAtSmallStrainOnly) {
 
 TEST(LinearElastic, RigidTranslationIsStressFree) {
   Simulation sim(testing::free_block_case(8, 6, false, 1e-7, "linear_elastic"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   const BondTable& bonds = sim.state().bonds;
   deform_affinely(p, Matrix2d::Identity(), Vector2d(0.37, -0.21));
   LinearElasticModel model(p, bonds, options_for(true));
@@ -286,7 +286,7 @@ TEST(LinearElastic, SmallRigidRotationGivesTheExpectedSpuriousEnergy) {
   int k = 0;
   for (const double angle : {1e-4, 2e-4}) {
     Simulation sim(testing::free_block_case(8, 6, false, 1e-7, "linear_elastic"));
-    ParticleStore& p = sim.particles();
+    ParticleStore& p = sim.state_to_change().particles;
     const BondTable& bonds = sim.state().bonds;
     Matrix2d rot;
     rot << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
@@ -316,7 +316,7 @@ struct Conservation {
 
 Conservation run_free_block(double dt, int steps) {
   Simulation sim(testing::free_block_case(10, 8, false, dt, "linear_elastic"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(33);
   std::normal_distribution<double> n(0.0, 1.0);
   double p_scale = 0;
@@ -368,7 +368,7 @@ TEST(LinearElastic, OneParticleThickBodyIsRefused) {
 TEST(LinearElastic, CollapsedNeighbourhoodStopsTheRun) {
   Simulation sim(testing::rod_case({"model=linear_elastic", "stability.min_jacobian=0.5"}));
   EXPECT_TRUE(sim.check_stability().ok);
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   // Squeeze the rod to 40 % of its length: J = 0.4 everywhere in it.
   for (std::size_t k = p.elastic.begin; k < p.elastic.end; ++k)
     p.x[k] = 0.1 - 0.4 * (0.1 - p.x0[k]);

@@ -28,7 +28,7 @@ void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
 
 TEST(PaperConservative, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case({"model=paper_conservative"}));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   jiggle(p, sim.spec().l0, 9, 0.4);
   sim.refresh_fields();
   testing::run_model_passes<PaperConservativeModel>(p, sim.state().bonds);
@@ -49,7 +49,7 @@ TEST(PaperConservative, KernelsMatchThePlainReference) {
 // surfaces included, and the stress follows the neo-Hookean law.
 TEST(FiniteStrain, AffineDeformationGivesExactGradientEverywhere) {
   Simulation sim(testing::free_block_case(12, 11, false, 1e-7, "finite_strain"));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   Eigen::Matrix2d f;
   f << 1.08, 0.21, -0.13, 0.87;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -83,7 +83,7 @@ class FiniteStrainForms : public ::testing::TestWithParam<bool> {};
 TEST_P(FiniteStrainForms, KernelsMatchThePlainReference) {
   const bool consistent = GetParam();
   Simulation sim(testing::rod_case({"model=finite_strain"}));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   jiggle(p, sim.spec().l0, 4, 0.0);
   OptionValues options = default_options(FiniteStrainModel::options());
   options.numbers["hourglass"] = 1.0;
@@ -113,7 +113,7 @@ TEST_P(EveryModel, RigidRotationIsForceFreeEverywhere) {
   if (!model_info(GetParam()).rotation_invariant) GTEST_SKIP() << "not rotation invariant";
   for (double angle : {1.0, -2.2}) {
     Simulation sim(testing::free_block_case(8, 6, false, 1e-7, GetParam()));
-    ParticleStore& p = sim.particles();
+    ParticleStore& p = sim.state_to_change().particles;
     const double c = std::cos(angle), s = std::sin(angle);
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.x[i] = 0.5 + c * p.x0[i] - s * p.y0[i];
@@ -135,7 +135,7 @@ TEST_P(EveryModel, RigidRotationIsForceFreeEverywhere) {
 
 TEST_P(EveryModel, FreeBlockConservesMomentaWithARigidPlate) {
   Simulation sim(testing::free_block_case(10, 8, true, 2e-7, GetParam()));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(21);
   std::normal_distribution<double> n(0.0, 1.0);
   for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {
@@ -180,7 +180,7 @@ INSTANTIATE_TEST_SUITE_P(Models, EveryModel, ::testing::ValuesIn(model_names()))
 // models keep KE + PE to O(dt); the paper model does not.
 double energy_drift(const std::string& model, double dt, int steps) {
   Simulation sim(testing::free_block_case(10, 8, false, dt, model));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   std::mt19937_64 rng(8);
   std::normal_distribution<double> n(0.0, 1.0);
   for (std::size_t i = p.elastic.begin; i < p.elastic.end; ++i) {

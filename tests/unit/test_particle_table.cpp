@@ -67,7 +67,7 @@ TEST(ParticleTable, NamesAreUnique) {
 
 TEST(ParticleTable, EveryStateArrayGoesThroughASnapshot) {
   Simulation sim(testing::rod_case({"l0=0.004"}));
-  SolverState& s = sim.state();
+  SolverState& s = sim.state_to_change();
   fill(s.particles, ArrayRole::state);
   const ParticleStore written = s.particles;
   const StateSnapshot snap = StateSnapshot::capture(s);
@@ -89,7 +89,7 @@ TEST(ParticleTable, EveryStateArrayGoesThroughACheckpointFile) {
       ("mpsolid_particle_table_" +
        std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".h5");
   Simulation sim(testing::rod_case({"l0=0.004"}));
-  fill(sim.state().particles, ArrayRole::state);
+  fill(sim.state_to_change().particles, ArrayRole::state);
   const ParticleStore written = sim.particles();
   Checkpoint c = capture_state(sim.state());
   c.case_toml = sim.spec().resolved_toml;
@@ -103,7 +103,7 @@ TEST(ParticleTable, EveryStateArrayGoesThroughACheckpointFile) {
 
   Simulation resumed(load_case_text(r.case_toml, path.string()));
   const ParticleStore set_up = resumed.particles();
-  restore_state(resumed.state(), r, path.string());
+  restore_state(resumed.state_to_change(), r, path.string());
   for_each_particle_member([&](const auto& info, auto member) {
     const auto& expected = info.role == ArrayRole::state ? written.*member : set_up.*member;
     EXPECT_TRUE(same_bits(resumed.particles().*member, expected)) << info.name;

@@ -26,7 +26,7 @@ TEST(Stability, HealthyStatePassesEveryCheck) {
 
 TEST(Stability, NonFiniteValueIsFoundAtItsParticle) {
   Simulation sim(testing::rod_case());
-  sim.particles().vx[137] = std::numeric_limits<double>::quiet_NaN();
+  sim.state_to_change().particles.vx[137] = std::numeric_limits<double>::quiet_NaN();
   const StabilityVerdict v = sim.check_stability();
   EXPECT_FALSE(v.ok);
   EXPECT_EQ(v.particle, 137u);
@@ -36,20 +36,20 @@ TEST(Stability, NonFiniteValueIsFoundAtItsParticle) {
 TEST(Stability, SpeedAboveTheDilatationalWaveSpeed) {
   Simulation sim(testing::rod_case());
   const std::size_t i = sim.particles().elastic.begin + 42;
-  sim.particles().vx[i] = 320.0;  // rubber: c_d = 306 m/s
+  sim.state_to_change().particles.vx[i] = 320.0;  // rubber: c_d = 306 m/s
   const StabilityVerdict v = sim.check_stability();
   EXPECT_FALSE(v.ok);
   EXPECT_EQ(v.particle, i);
   EXPECT_NEAR(v.limit, 306.0, 0.5);
   EXPECT_NE(v.criterion.find("speed"), std::string::npos);
-  sim.particles().vx[i] = 300.0;
+  sim.state_to_change().particles.vx[i] = 300.0;
   EXPECT_TRUE(sim.check_stability().ok) << "300 m/s is below c_d";
 }
 
 TEST(Stability, InvertedBondIsFoundByThePaperModels) {
   for (const std::string model : {"paper", "paper_conservative"}) {
     Simulation sim(testing::rod_case({"model=" + model}));
-    ParticleStore& p = sim.particles();
+    ParticleStore& p = sim.state_to_change().particles;
     // Push an interior rod particle through its right-hand neighbour.
     std::size_t i = p.size(), j = p.size();
     for (std::size_t k = 0; k < p.size(); ++k) {
@@ -68,7 +68,7 @@ TEST(Stability, InvertedBondIsFoundByThePaperModels) {
 
 TEST(Stability, CollapsedNeighbourhoodIsFoundByFiniteStrain) {
   Simulation sim(testing::rod_case({"model=finite_strain", "stability.min_jacobian=0.5"}));
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   // Squeeze the rod to 40 % of its length: J = 0.4 everywhere in it.
   for (std::size_t k = p.elastic.begin; k < p.elastic.end; ++k)
     p.x[k] = 0.1 - 0.4 * (0.1 - p.x0[k]);

@@ -64,7 +64,7 @@ double speed_after(const std::string& model, double fraction, int steps) {
   }();
   spec.dt = fraction * limit;
   Simulation sim(spec);
-  ParticleStore& p = sim.particles();
+  ParticleStore& p = sim.state_to_change().particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double sign = ((static_cast<long>(std::floor(p.x0[i] / 1e-3)) +
                           static_cast<long>(std::floor(p.y0[i] / 1e-3))) &
