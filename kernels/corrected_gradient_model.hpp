@@ -148,13 +148,28 @@ class CorrectedGradientModel {
 
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
-    compute_deformation_gradient(p, bonds, range);
-    compute_hourglass_stress(p, bonds, range);
+    NoHalo none;
+    strain_pass(p, bonds, range, none);
   }
 
-  // compute_strain in the two parts a decomposed step exchanges between
-  // (docs/mpi.md): pass 1, then (once every particle's F is current) the
-  // bonds' gaps and pass 1b.
+  // What the step's halos carry over MPI ranks (src/solver/step.hpp; on one
+  // rank `halo` does nothing): before pass 1, a partner's position; after
+  // it, its F (a bond's gap reads both ends'); after pass 1b, its
+  // (S + Q) A^-1, which the force pass reads. A ghost's A^-1 is never read.
+  template <class Halo>
+  static void share_motion(ParticleStore& p, Halo& halo) {
+    halo({field_of(p.x), field_of(p.y)});
+  }
+  template <class Halo>
+  void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
+    compute_deformation_gradient(p, bonds, range);
+    halo({deformation_gradient_field()});
+    compute_hourglass_stress(p, bonds, range);
+    halo({stress_field()});
+  }
+
+  // The strain pass's two parts: pass 1, then (once every particle's F is
+  // current) the bonds' gaps and pass 1b.
   void compute_deformation_gradient(ParticleStore& p, const BondTable& bonds, Range range) {
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_deformation_gradient(p, bonds, {b, e});
@@ -171,8 +186,7 @@ class CorrectedGradientModel {
       });
   }
 
-  // The per-particle fields a rank's ghosts get from their owners: F (after
-  // pass 1) and (S + Q) A^-1 (after pass 1b). A ghost's A^-1 is never read.
+  // The per-particle fields the halos carry: F and (S + Q) A^-1.
   ParticleField deformation_gradient_field() { return {def_grad_.data(), 4, 4, 1}; }
   ParticleField stress_field() { return {stress_a_.data(), 4, 1, particle_count()}; }
 

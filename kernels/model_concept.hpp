@@ -18,6 +18,7 @@
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/option_table.hpp"
+#include "src/core/particle_field.hpp"
 #include "src/core/particle_store.hpp"
 
 namespace mpsolid {
@@ -25,7 +26,7 @@ namespace mpsolid {
 template <class M>
 concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleStore& cp,
                              const BondTable& bonds, const OptionValues& options, Range range,
-                             std::size_t i, const IntegrityLimits& limits) {
+                             std::size_t i, const IntegrityLimits& limits, NoHalo& halo) {
   { M::name } -> std::convertible_to<const char*>;
   { M::uses_rotation } -> std::convertible_to<bool>;       // spins and half angles are integrated
   { M::rotation_invariant } -> std::convertible_to<bool>;  // a rigid rotation is stress-free
@@ -37,6 +38,11 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
   { M::options() } -> std::same_as<std::vector<OptionSpec>>;   // that section's table
   M(cp, bonds, options);
   m.compute_strain(p, bonds, range);
+  // The strain pass as the step runs it, with its halos (src/solver/step.hpp):
+  // what it reads of a partner's motion, and after each stage the fields the
+  // next stage or the force pass read of a partner.
+  M::share_motion(p, halo);
+  m.strain_pass(p, bonds, range, halo);
   cm.compute_forces(p, bonds, range);
   // The particle's share of the strain energy (needs a current strain pass).
   { cm.particle_strain_energy(cp, bonds, i) } -> std::same_as<double>;

@@ -28,13 +28,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "kernels/bond_loop.hpp"
+#include "kernels/bond_math.hpp"
 #include "kernels/bond_slots.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/half_angles.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/parallel.hpp"
+#include "src/core/particle_field.hpp"
 #include "src/core/particle_store.hpp"
 
 namespace mpsolid {
@@ -121,6 +122,20 @@ class PaperModelT {
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_strain(p, bonds, {b, e});
     });
+  }
+
+  // What the step's halos carry over MPI ranks (src/solver/step.hpp; on one
+  // rank `halo` does nothing): before pass 1, what it reads of a partner's
+  // motion; after it, the strain and pressure the force pass reads.
+  template <class Halo>
+  static void share_motion(ParticleStore& p, Halo& halo) {
+    halo({field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
+          field_of(p.half_sin)});
+  }
+  template <class Halo>
+  void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
+    compute_strain(p, bonds, range);
+    halo({field_of(p.strain), field_of(p.pressure)});
   }
 
   // Pass 2 (needs pass 1 at the current state): force and torque.

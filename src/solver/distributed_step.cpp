@@ -36,13 +36,11 @@ RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
 void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps) {
   if (part.local.contact.enabled())
     rebuild_rank_contact(part.contact, part.local, part.layout, world, part.halo_cost);
-  std::visit(
-      [&](auto& m) {
-        if constexpr (kDecomposable<std::decay_t<decltype(m)>>)
-          advance_decomposed(m, part.local, part.layout, part.halo, part.contact, world, dt, steps,
-                             part.halo_cost, part.times);
-      },
-      part.model);
+  OverRanks place(part, world);
+  BodyKicks kicks(part.local.rigid_bodies.size());
+  std::visit([&](auto& model) { steps_in_order(model, part.local, dt, steps, kicks, place); },
+             part.model);
+  part.local.step += steps;
 }
 
 void append_rank_fields(RankPart& part, const Communicator& world, const IntegrityLimits& limits,
@@ -51,32 +49,26 @@ void append_rank_fields(RankPart& part, const Communicator& world, const Integri
   ParticleStore& p = s.particles;
   const LocalLayout& layout = part.layout;
   const Range owned = layout.owned;
+  OverRanks place(part, world);
   std::visit(
       [&](auto& model) {
-        using Model = std::decay_t<decltype(model)>;
-        if constexpr (kDecomposable<Model>) {
-          if constexpr (Model::uses_rotation)
-            compute_half_angles(
-                p, {std::max(owned.begin, p.moving().begin), std::min(owned.end, p.moving().end)});
-          exchange_positions<Model::uses_rotation>(world, part.halo, p, part.halo_cost);
-          decomposed_strain(model, s, layout, part.halo, world, part.halo_cost);
-          out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
-                     p.strain.begin() + static_cast<long>(owned.end));
-          out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
-                     p.pressure.begin() + static_cast<long>(owned.end));
-          // Owned ranges start at a chunk boundary: each chunk is a serial one.
-          for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk)
-            out.push_back(ordered_sum<1>(b, std::min(owned.end, b + kSumChunk), [&](std::size_t i) {
-              return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
-            })[0]);
-          const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
-          out.push_back(r.value);
-          out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));
-          out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.neighbor]));
-          out.push_back(r.failed ? 1.0 : 0.0);
-          out.push_back(static_cast<double>(r.criterion.size()));
-          for (const char c : r.criterion) out.push_back(static_cast<double>(c));
-        }
+        strain_fields(model, s, place);
+        out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
+                   p.strain.begin() + static_cast<long>(owned.end));
+        out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
+                   p.pressure.begin() + static_cast<long>(owned.end));
+        // Owned ranges start at a chunk boundary: each chunk is a serial one.
+        for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk)
+          out.push_back(ordered_sum<1>(b, std::min(owned.end, b + kSumChunk), [&](std::size_t i) {
+            return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
+          })[0]);
+        const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
+        out.push_back(r.value);
+        out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));
+        out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.neighbor]));
+        out.push_back(r.failed ? 1.0 : 0.0);
+        out.push_back(static_cast<double>(r.criterion.size()));
+        for (const char c : r.criterion) out.push_back(static_cast<double>(c));
       },
       part.model);
 }

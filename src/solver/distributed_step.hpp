@@ -1,25 +1,19 @@
 #pragma once
-// The decomposed step on one rank (docs/mpi.md), for every model: the
-// rank steps its own particles on its local state, and before each pass
-// that reads neighbours its ghosts get their owners' values (the halos).
-// Every owned particle then computes exactly what the serial step computes,
-// in the same order: the same bits at any rank count.
+// The step on one rank of several (docs/mpi.md), for every model: the rank
+// runs the one step order (src/solver/step.hpp) on its local state, over its
+// owned particles, and before each pass that reads neighbours its ghosts get
+// their owners' values through the halos the model names (share_motion,
+// strain_pass). Every owned particle then computes exactly what the serial
+// step computes, in the same order: the same bits at any rank count.
 //
-// Halos per step, the paper models: positions, rotations and half angles
-// before the strain pass; strain and pressure before the force pass. The
-// corrected-gradient models: positions; F after pass 1 (a bond's gap reads
-// both ends'); (S + Q) A^-1 before the force pass. (A ghost's A^-1, which
-// its partial local row cannot give, is never needed.) With contact, the
-// contact pass (src/solver/distributed_contact.hpp) follows the positions'
-// halo, as it comes first in the serial step.
+// With contact, the contact pass (src/solver/distributed_contact.hpp)
+// follows the halo of motion, as it comes first in the serial step.
 #include <chrono>
 #include <cstdint>
 #include <initializer_list>
-#include <type_traits>
 #include <vector>
 
 #include "kernels/model_registry.hpp"
-#include "kernels/paper_model.hpp"
 #include "src/case/case_spec.hpp"
 #include "src/core/particle_field.hpp"
 #include "src/core/timers.hpp"
@@ -32,96 +26,6 @@
 
 namespace mpsolid {
 
-// The corrected-gradient models: their strain pass is two gathers with a
-// halo between (a bond's gap reads both ends' F), and their force pass
-// reads the partners' (S + Q) A^-1.
-template <class Model>
-concept HasStressHalo = requires(Model m, ParticleStore& p, const BondTable& b, Range r) {
-  m.compute_deformation_gradient(p, b, r);
-  m.compute_hourglass_stress(p, b, r);
-  m.deformation_gradient_field();
-  m.stress_field();
-};
-
-template <class Model>
-inline constexpr bool kDecomposable =
-    std::is_same_v<Model, PaperModel> || std::is_same_v<Model, PaperConservativeModel> ||
-    HasStressHalo<Model>;
-
-// Adds the wall time of pass() to `seconds`, less the time it spent in
-// halo exchanges (which `cost` counts).
-template <class Pass>
-void time_pass(double& seconds, const HaloCost& cost, Pass&& pass) {
-  const double in_halos = cost.seconds;
-  const auto start = std::chrono::steady_clock::now();
-  pass();
-  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-             (cost.seconds - in_halos);
-}
-
-// The first halo of a step: positions (and, with rotation, the rotations
-// and half angles).
-template <bool Rotation>
-void exchange_positions(const Communicator& world, LocalHalo& halo, ParticleStore& p,
-                        HaloCost& cost) {
-  if constexpr (Rotation)
-    exchange_halo(world, halo,
-                  {field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
-                   field_of(p.half_sin)},
-                  cost);
-  else
-    exchange_halo(world, halo, {field_of(p.x), field_of(p.y)}, cost);
-}
-
-// The strain pass of the owned particles, with the halos that leave every
-// ghost's force-pass inputs at their owners' values.
-template <class Model>
-void decomposed_strain(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
-                       const Communicator& world, HaloCost& cost) {
-  ParticleStore& p = s.particles;
-  if constexpr (HasStressHalo<Model>) {
-    model.compute_deformation_gradient(p, s.bonds, layout.owned);
-    exchange_halo(world, halo, {model.deformation_gradient_field()}, cost);
-    model.compute_hourglass_stress(p, s.bonds, layout.owned);
-    exchange_halo(world, halo, {model.stress_field()}, cost);
-  } else {
-    model.compute_strain(p, s.bonds, layout.owned);
-    exchange_halo(world, halo, {field_of(p.strain), field_of(p.pressure)}, cost);
-  }
-}
-
-// Advances this rank's local state by `steps` steps of dt (its team is the
-// calling thread's: one OpenMP thread per rank for now). With contact, the
-// list must have been built on every rank at the current positions.
-template <class Model>
-void advance_decomposed(Model& model, SolverState& s, const LocalLayout& layout, LocalHalo& halo,
-                        RankContact& contact, const Communicator& world, double dt,
-                        std::int64_t steps, HaloCost& cost, RankTimes& times) {
-  static_assert(kDecomposable<Model>, "a model the decomposed step does not cover");
-  constexpr bool rot = Model::uses_rotation;
-  ParticleStore& p = s.particles;
-  const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),
-                           std::min(layout.owned.end, p.moving().end)};
-  if constexpr (rot) compute_half_angles(p, moving_owned);
-  BodyKicks kicks(s.rigid_bodies.size());
-  for (std::int64_t k = 0; k < steps; ++k, ++s.step) {
-    exchange_positions<rot>(world, halo, p, cost);
-    if (s.contact.enabled())
-      time_pass(times.contact_seconds, cost,
-                [&] { rank_contact_pass(contact, s, layout, world, s.step, cost); });
-    if (!s.loads.empty()) activate_loads(p, s.loads, s.step);
-    time_pass(times.strain_seconds, cost,
-              [&] { decomposed_strain(model, s, layout, halo, world, cost); });
-    // The force pass reads no position: a block's forces and its
-    // integration follow each other, as in the team step.
-    if (moving_owned.begin < moving_owned.end)
-      time_pass(times.forces_seconds, cost, [&] {
-        model.compute_forces_block(p, s.bonds, moving_owned);
-        integrate_block<rot>(s, dt, moving_owned, kicks);
-      });
-  }
-}
-
 // One rank's part of a case: its particles and ghosts, its halo, its local
 // state and the model made from it.
 struct RankPart {
@@ -132,6 +36,65 @@ struct RankPart {
   AnyModel model;
   HaloCost halo_cost;  // summed over every step so far
   RankTimes times;     // the passes' wall time, summed likewise
+};
+
+// Adds the wall time of its scope to `*seconds` (when not null), less the
+// time spent meanwhile in halo exchanges (which `cost` counts).
+class PassTime {
+ public:
+  PassTime(double* seconds, const HaloCost& cost)
+      : seconds_(seconds),
+        cost_(cost),
+        in_halos_(cost.seconds),
+        start_(std::chrono::steady_clock::now()) {}
+  ~PassTime() {
+    if (seconds_)
+      *seconds_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() -
+          (cost_.seconds - in_halos_);
+  }
+  PassTime(const PassTime&) = delete;
+  PassTime& operator=(const PassTime&) = delete;
+
+ private:
+  double* seconds_;
+  const HaloCost& cost_;
+  double in_halos_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The step on a rank's part: its owned particles, its ghosts' halos, contact
+// over the ranks, each pass timed without its halos.
+class OverRanks {
+ public:
+  OverRanks(RankPart& part, const Communicator& world)
+      : part_(part), world_(world), halo_{part, world} {}
+  Range own(const ParticleStore&) const { return part_.layout.owned; }
+  // Gives the ghosts their owners' values of the fields.
+  struct Halo {
+    RankPart& part;
+    const Communicator& world;
+    void operator()(std::initializer_list<ParticleField> fields) {
+      exchange_halo(world, part.halo, fields, part.halo_cost);
+    }
+  };
+  Halo& halo() { return halo_; }
+  void contact_pass(SolverState& s, std::int64_t step) {
+    rank_contact_pass(part_.contact, s, part_.layout, world_, step, part_.halo_cost);
+  }
+  PassTime time(Phase phase) {
+    RankTimes& t = part_.times;
+    double* seconds = phase == Phase::contact  ? &t.contact_seconds
+                      : phase == Phase::strain ? &t.strain_seconds
+                      : phase == Phase::forces ? &t.forces_seconds
+                                               : nullptr;
+    return PassTime(seconds, part_.halo_cost);
+  }
+
+ private:
+  RankPart& part_;
+  const Communicator& world_;
+  Halo halo_;
 };
 
 // The strain pass of the part's own particles at their current positions

@@ -1,41 +1,41 @@
 #pragma once
-// The time step, in order (MODEL.md section 2). Holds no physics itself:
-// (contact pass ->) strain pass -> (loads switch on) force/torque pass -> loads, holds,
-// integrate, half angles -> rigid-body projection.
+// The time step, in order, written once (MODEL.md section 2). Holds no
+// physics itself:
+//   (halo of motion ->) (contact pass ->) loads switch on -> strain pass (with
+//   its halos) -> force/torque pass -> loads, holds, integrate, half angles ->
+//   rigid-body projection.
+// Where it runs is a `Place`: OneRank (the whole state on this process; every
+// halo does nothing) or OverRanks (a rank's local state, src/solver/
+// distributed_step.hpp: its owned particles, its ghosts' halos and contact
+// over the ranks). Each model says what the halos carry before and after the
+// stages of its strain pass (share_motion, strain_pass), so the step names no
+// model.
 //
-// A batch of steps runs in one parallel region (run_in_team): each phase is
-// a loop over chunks of per-thread particle blocks that ends with a barrier
-// (src/core/parallel.hpp), and the serial bookkeeping (a load switching on)
-// is done by one thread. Loads, kick, drift and the new half angles of a
-// particle follow its force in the same chunk, with no barrier between; a
-// rigid body is projected by the thread that kicks its last particles. Every
-// particle's arithmetic is the same at any thread count, chunking and batch
+// On one rank a batch of steps runs in one parallel region (run_in_team):
+// each phase is a loop over chunks of per-thread particle blocks that ends
+// with a barrier (src/core/parallel.hpp), and the serial bookkeeping (a load
+// switching on) is done by one thread. Over ranks the calling thread runs the
+// step and each loop forks and joins its threads (the halos are the calling
+// thread's). Loads, kick, drift and the new half angles of a particle follow
+// its force in the same chunk, with no barrier between; a rigid body is
+// projected by the thread that kicks its last particles. Every particle's
+// arithmetic is the same at any thread and rank count, chunking and batch
 // size: the same bits.
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "kernels/contact_force.hpp"
 #include "neighbor/contact_search.hpp"
 #include "src/core/half_angles.hpp"
 #include "src/core/integrator.hpp"
+#include "src/core/particle_field.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/solver/step_schedule.hpp"
 
 namespace mpsolid {
-
-// Fields that depend on the current positions only: half angles, strain and
-// pressure. Walls keep theta = 0, so their half angles are set once.
-template <class Model>
-void update_strain(Model& model, SolverState& s, PhaseTimers& timers) {
-  if constexpr (Model::uses_rotation) {
-    auto t = timers.time(Phase::half_angles);
-    compute_half_angles(s.particles, s.particles.moving());
-  }
-  auto t = timers.time(Phase::strain);
-  model.compute_strain(s.particles, s.bonds, s.particles.all());
-}
 
 // Counts, per rigid body, its particles kicked in the current step: the
 // thread that kicks the last of them projects the body (the projection reads
@@ -73,9 +73,10 @@ void integrate_block(SolverState& s, double dt, Range block, BodyKicks& kicks) {
   }
 }
 
-// The contact forces of the current positions, called by every thread of the
-// team. When some candidate has moved more than half the skin since the
-// Verlet list was built, one thread rebuilds it and the pass runs again.
+// The contact forces of the current positions on one rank, called by every
+// thread of the team. When some candidate has moved more than half the skin
+// since the Verlet list was built, one thread rebuilds it and the pass runs
+// again.
 inline void contact_pass(SolverState& s, std::int64_t step) {
   ContactState& c = s.contact;
   const auto pass = [&] {
@@ -91,60 +92,117 @@ inline void contact_pass(SolverState& s, std::int64_t step) {
   pass();
 }
 
-// One step, called by every thread of the team. Needs the half angles of
-// the current rotations (the previous step's integration leaves them).
-template <class Model>
-void team_step(Model& model, SolverState& s, double dt, PhaseTimers& timers, std::int64_t step,
-               BodyKicks& kicks) {
+// The step on one rank: the whole state is this process's, no halo carries
+// anything, the team's rank 0 times the phases.
+class OneRank {
+ public:
+  explicit OneRank(PhaseTimers& timers) : timers_(timers) {}
+  // The particles this place computes: all of them.
+  Range own(const ParticleStore& p) const { return p.all(); }
+  NoHalo& halo() { return halo_; }
+  void contact_pass(SolverState& s, std::int64_t step) { mpsolid::contact_pass(s, step); }
+  TeamPhase time(Phase phase) { return TeamPhase(timers_, phase); }
+
+ private:
+  PhaseTimers& timers_;
+  NoHalo halo_;
+};
+
+// The moving particles among those `place` computes.
+template <class Place>
+Range own_moving(Place& place, const ParticleStore& p) {
+  const Range own = place.own(p);
+  return {std::max(own.begin, p.moving().begin), std::min(own.end, p.moving().end)};
+}
+
+// The position-dependent fields of the current state: half angles, the
+// halos of motion, the strain pass with its halos (strain and pressure, and
+// the model's own fields). Walls keep theta = 0, so their half angles are
+// set once.
+template <class Model, class Place>
+void strain_fields(Model& model, SolverState& s, Place& place) {
+  ParticleStore& p = s.particles;
+  if constexpr (Model::uses_rotation) {
+    auto t = place.time(Phase::half_angles);
+    compute_half_angles(p, own_moving(place, p));
+  }
+  Model::share_motion(p, place.halo());
+  auto t = place.time(Phase::strain);
+  model.strain_pass(p, s.bonds, place.own(p), place.halo());
+}
+
+// One step, in order, called by every thread of the team on one rank (by
+// the one calling thread over ranks). Needs the half angles of the current
+// rotations (the previous step's integration leaves them).
+template <class Model, class Place>
+void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyKicks& kicks,
+               Place& place) {
   ParticleStore& p = s.particles;
   constexpr bool rot = Model::uses_rotation;
+  const Range moving = own_moving(place, p);
+  Model::share_motion(p, place.halo());
   if (s.contact.enabled()) {
-    TeamPhase t(timers, Phase::contact);
-    contact_pass(s, step);
+    auto t = place.time(Phase::contact);
+    place.contact_pass(s, step);
   }
   {
-    TeamPhase t(timers, Phase::strain);
+    auto t = place.time(Phase::strain);
     // Positions stay put until the force pass, and the switch-on is read
     // only after the strain pass's closing barrier.
     if (team_rank() == 0 && !s.loads.empty())
       serial_section([&] { activate_loads(p, s.loads, step); });
-    model.compute_strain(p, s.bonds, p.all());
+    model.strain_pass(p, s.bonds, place.own(p), place.halo());
   }
   if constexpr (Model::forces_read_positions) {
     {
-      TeamPhase t(timers, Phase::forces);
-      model.compute_forces(p, s.bonds, p.moving());
+      auto t = place.time(Phase::forces);
+      model.compute_forces(p, s.bonds, moving);
     }
-    TeamPhase t(timers, Phase::integrate);
-    parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
+    auto t = place.time(Phase::integrate);
+    parallel_blocks(moving.begin, moving.end, [&](std::size_t b, std::size_t e) {
       integrate_block<rot>(s, dt, {b, e}, kicks);
     });
   } else {
     // A block's forces read no position, so its integration follows at once:
     // one barrier less per step.
-    TeamPhase t(timers, Phase::forces);
-    parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
+    auto t = place.time(Phase::forces);
+    parallel_blocks(moving.begin, moving.end, [&](std::size_t b, std::size_t e) {
       model.compute_forces_block(p, s.bonds, {b, e});
       integrate_block<rot>(s, dt, {b, e}, kicks);
     });
   }
 }
 
-// Advances `steps` steps of `dt` in one parallel region.
+// Advances `steps` steps of `dt` at `place` (s.step is the caller's to
+// move on): the half angles of the current rotations first, then the steps.
+// On one rank every thread of the team calls it, sharing `kicks`.
+template <class Model, class Place>
+void steps_in_order(Model& model, SolverState& s, double dt, std::int64_t steps, BodyKicks& kicks,
+                    Place& place) {
+  const std::int64_t first = s.step;
+  if constexpr (Model::uses_rotation) {
+    auto t = place.time(Phase::half_angles);
+    compute_half_angles(s.particles, own_moving(place, s.particles));
+  }
+  for (std::int64_t k = 0; k < steps; ++k) step_once(model, s, dt, first + k, kicks, place);
+}
+
+// Advances `steps` steps of `dt` on one rank, in one parallel region.
 template <class Model>
 void advance_steps(Model& model, SolverState& s, double dt, PhaseTimers& timers,
                    std::int64_t steps) {
   if (steps <= 0) return;
-  const std::int64_t first = s.step;
+  OneRank place(timers);
   BodyKicks kicks(s.rigid_bodies.size());
-  run_in_team([&] {
-    if constexpr (Model::uses_rotation) {
-      TeamPhase t(timers, Phase::half_angles);
-      compute_half_angles(s.particles, s.particles.moving());
-    }
-    for (std::int64_t k = 0; k < steps; ++k) team_step(model, s, dt, timers, first + k, kicks);
-  });
-  s.step = first + steps;
+  run_in_team([&] { steps_in_order(model, s, dt, steps, kicks, place); });
+  s.step += steps;
+}
+
+// The position-dependent fields on one rank (outside a team).
+template <class Model>
+void update_strain(Model& model, SolverState& s, PhaseTimers& timers) {
+  OneRank place(timers);
+  strain_fields(model, s, place);
 }
 
 }  // namespace mpsolid

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "kernels/bond_loop.hpp"
 #include "kernels/paper_model.hpp"
+#include "kernels/reference/bond_loop.hpp"
 #include "kernels/reference/reference_kernels.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"

@@ -1,7 +1,8 @@
 #pragma once
-// The gather over one particle's bonds, written once for every rotation-based
-// model: visit(b, j, bond_vectors, 1 / |r_ij|) for each bond b = (i, j) in the
-// fixed CSR order. Kernels differ only in what they accumulate.
+// A test oracle: the gather over one particle's bonds from its own end, for
+// the rotation-based models (the product computes each bond once, into its
+// slot: kernels/bond_slots.hpp): visit(b, j, bond_vectors, 1 / |r_ij|) for
+// each bond b = (i, j) in the fixed CSR order.
 #include <cmath>
 
 #include "kernels/bond_math.hpp"
