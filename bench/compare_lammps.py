@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Peer comparison (issues 6, 12): mpsolid's full models against LAMMPS on a
+"""Peer comparison: mpsolid's full models against LAMMPS on a
 plain harmonic bond network with the same particles and bonds
 (bench/lammps/make_input.py), measured in the same run.
 

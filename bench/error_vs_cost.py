@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Run time against error on the rod case and the cantilever plate, and the
-rod's convergence study (issue: accuracy you can quote).
+rod's convergence study.
 
 Rod (cases/shock_rod.toml, 11.2 kN, to 5 ms): the first peak of plate.x and its
 time, per model x l0 x dt. l0 = 2, 1, 0.5, 0.25 mm with time.dt = "auto" at

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Memory of the rod case at large sizes (issue 6): peak resident memory of a
+"""Memory of the rod case at large sizes: peak resident memory of a
 short mpsolid run at each l0, its bytes per particle (bonds included), the
 marginal bytes per particle between the sizes (fixed overheads cancel), and
 the bytes the data structures should take (src/core/particle_store.hpp,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The end-to-end benchmark (issue 6): the paper's case, cases/shock_rod.toml
+# The end-to-end benchmark: the paper's case, cases/shock_rod.toml
 # (1,130 particles, 1,000,000 steps of 10 ns), at each thread count given
 # (default 1 2). Builds Release first if needed. Reports wall time, steps/s and
 # particle-steps/s per thread count (from each run's run.json) and checks that
@@ -8,7 +8,7 @@
 #   bench/run_paper_case.sh [THREADS...]
 # Runs go to out/bench/paper_case/tN/; the table to out/bench/paper_case.md
 # and .json. PAPER_END=T (seconds) shortens the runs, to try the script.
-# Each full run takes 2-3 minutes on this machine.
+# Each full run takes 25-60 s on a 2-vCPU VM (docs/performance.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 threads=("$@")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes a LAMMPS input for the peer comparison (issue 6): a fixed harmonic
+"""Writes a LAMMPS input for the peer comparison: a fixed harmonic
 bond network on exactly mpsolid's lattice sites for a case (default
 cases/shock_rod.toml), i.e. the same particle count and the same bonds (every
 pair closer than 2.1 l0: 4 at l0, 4 at sqrt(2) l0, 4 at 2 l0, so 12 per
