@@ -146,7 +146,7 @@ class CorrectedGradientModel {
     fill(kHourglass, penalty);
   }
 
-  // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
+  // Pass 1 with no halo (the whole state on this process).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
     NoHalo none;
     strain_pass(p, bonds, range, none);
@@ -160,6 +160,7 @@ class CorrectedGradientModel {
   static void share_motion(ParticleStore& p, Halo& halo) {
     halo({field_of(p.x), field_of(p.y)});
   }
+  // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
     compute_deformation_gradient(p, bonds, range);

@@ -6,9 +6,12 @@
 // and reference geometry at construction, reads its options from its own
 // case section (options_section, validated against options() by the case
 // reader), and then runs two gather passes per step:
-//   compute_strain: position-dependent fields of every particle in `range`
-//     (strain, pressure and whatever the force pass needs);
-//   compute_forces: force and torque of the moving particles in `range`.
+//   strain_pass: position-dependent fields of every particle in `range`
+//     (strain, pressure and whatever the force pass needs), with the halos
+//     over MPI ranks of what it and the force pass read of a partner
+//     (share_motion before it); compute_strain is the same with no halo;
+//   compute_forces (compute_forces_block per block): force and torque of
+//     the moving particles in `range`.
 // Each index writes only its own outputs, so any thread schedule gives the
 // same bits. A new model is one file in kernels/ and one line in
 // kernels/model_registry.hpp.

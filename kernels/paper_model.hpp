@@ -112,16 +112,10 @@ class PaperModelT {
     return c;
   }
 
-  // Pass 1: each bond's kinematics once (its owner's thread), then each
-  // particle's strain and pressure from its bonds' slots. Every particle's
-  // slots are computed whatever `range` is.
+  // Pass 1 with no halo (the whole state on this process).
   void compute_strain(ParticleStore& p, const BondTable& bonds, Range range) {
-    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
-      compute_bond_slots(p, {b, e});
-    });
-    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      gather_strain(p, bonds, {b, e});
-    });
+    NoHalo none;
+    strain_pass(p, bonds, range, none);
   }
 
   // What the step's halos carry over MPI ranks (src/solver/step.hpp; on one
@@ -132,9 +126,17 @@ class PaperModelT {
     halo({field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
           field_of(p.half_sin)});
   }
+  // Pass 1: each bond's kinematics once (its owner's thread), then each
+  // particle's strain and pressure from its bonds' slots. Every particle's
+  // slots are computed whatever `range` is.
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
-    compute_strain(p, bonds, range);
+    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
+      compute_bond_slots(p, {b, e});
+    });
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      gather_strain(p, bonds, {b, e});
+    });
     halo({field_of(p.strain), field_of(p.pressure)});
   }
 

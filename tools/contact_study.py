@@ -135,11 +135,11 @@ def check_folder(folder, need_frames):
              f"has not written it yet")
 
 
-def read_history(folder, body):
+def history_with_body(folder, body):
     """history.csv as {column: array}: at least one row, the energies
-    (mpsolid.plot.read_history) and BODY.x."""
+    (mpsolid.plot.history_to_draw) and BODY.x."""
     try:
-        h = plot.read_history(folder)
+        h = plot.history_to_draw(folder)
     except plot.PlotError as e:
         fail(str(e), e.code)
     if f"{body}.x" not in h:
@@ -464,7 +464,7 @@ def main():
     for label, folder in runs.items():
         check_folder(folder, need_frames=bool(args.out_png) and label in columns)
 
-    histories = {label: read_history(folder, args.body) for label, folder in runs.items()}
+    histories = {label: history_with_body(folder, args.body) for label, folder in runs.items()}
     measures = [measure_run(label, runs[label], h, args.body, times_ms)
                 for label, h in histories.items()]
     descriptions = [describe(label, runs[label], h) for label, h in histories.items()]

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <type_traits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -22,19 +22,6 @@ namespace py = pybind11;
 namespace mpsolid::python {
 
 namespace {
-
-// The element type numpy sees: a Kind as its integer (KIND_NAMES names it).
-template <class T>
-struct Numpy {
-  using type = T;
-};
-template <class T>
-requires std::is_enum_v<T>
-struct Numpy<T> {
-  using type = std::underlying_type_t<T>;
-};
-template <class T>
-using NumpyType = typename Numpy<T>::type;
 
 // Steps between looks at Python's signals: about 2e6 particle-steps (a
 // tenth of a second on one core), at most 1000. Batches end on multiples of
@@ -120,7 +107,7 @@ py::dict diagnostics_dict(const Diagnostics& d) {
 // A read-only view of `data`, kept alive by `owner` (the Simulation).
 template <class T>
 py::array view(const py::object& owner, const std::vector<T>& v) {
-  using N = NumpyType<T>;
+  using N = NumberOf_t<T>;  // a Kind as its integer (KIND_NAMES names it)
   static_assert(sizeof(N) == sizeof(T));
   const auto* data = reinterpret_cast<const N*>(v.data());
   py::array a(py::dtype::of<N>(), {v.size()}, {sizeof(N)}, data, owner);
@@ -129,12 +116,12 @@ py::array view(const py::object& owner, const std::vector<T>& v) {
 }
 
 std::uintptr_t address_of(SimulationHandle& h, const std::string& name) {
-  std::uintptr_t address = 0;
+  std::optional<std::uintptr_t> address;
   for_each_particle_array(h.sim().particles(), [&](const auto& info, const auto& v) {
     if (name == info.name) address = reinterpret_cast<std::uintptr_t>(v.data());
   });
-  if (address == 0) throw py::key_error(name);
-  return address;
+  if (!address) throw py::key_error(name);
+  return *address;
 }
 
 }  // namespace

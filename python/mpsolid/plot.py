@@ -69,7 +69,7 @@ def check_folder(folder):
                         f"`mpsolid run CASE --out {folder}` first")
 
 
-def read_history(folder):
+def history_to_draw(folder):
     """history.csv as {column: array}, with at least one row and the energies."""
     path = os.path.join(folder, run_data.HISTORY_CSV)
     try:
@@ -819,7 +819,7 @@ def plot_run(folder, color="pressure", frames=12, dpi=150, reference=None):
     what was drawn, {"frames": ..., "history": ...}; raises PlotError."""
     check_folder(folder)
     curve = (reference, read_reference(reference)) if reference else None
-    history = read_history(folder)
+    history = history_to_draw(folder)
     chosen, body_names, l0, total = read_frames(folder, frames, COLOUR_FIELDS.get(color))
     title, blowup, footnote = describe_run(folder, run_data.read_info(folder, default={}),
                                            run_data.read_case(folder, default={}))

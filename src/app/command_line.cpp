@@ -2,7 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "src/app/run.hpp"
+#include "src/app/exit_codes.hpp"
 #include "src/app/version.hpp"
 
 namespace mpsolid {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "src/app/exit_codes.hpp"
 #include "src/case/case_spec.hpp"
 
 namespace mpsolid {
@@ -27,16 +28,6 @@ struct RunOptions {
 // runs of one case with different --set land in different folders.
 std::filesystem::path default_out_dir(const std::string& case_name,
                                       const std::vector<std::string>& overrides);
-
-// kExitStopped: a stop signal (SIGINT, SIGTERM) ended the run after writing a
-// checkpoint and the outputs; `mpsolid resume` continues it.
-enum ExitCode : int {
-  kExitOk = 0,
-  kExitError = 1,
-  kExitBadInput = 2,
-  kExitUnstable = 3,
-  kExitStopped = 4
-};
 
 // Runs the case to its end (or a stop signal, or a blow-up) in options.out_dir;
 // returns the process exit code.

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace mpsolid {
 
@@ -20,6 +21,20 @@ inline T cross(T ax, T ay, T bx, T by) {
 enum class Kind : std::int8_t { wall = 0, elastic = 1, rigid = 2 };
 
 const char* kind_name(Kind kind);
+
+// The number an element travels as (in rank messages, numpy arrays): an
+// enumeration's underlying integer, any other type itself.
+template <class T>
+struct NumberOf {
+  using type = T;
+};
+template <class T>
+requires std::is_enum_v<T>
+struct NumberOf<T> {
+  using type = std::underlying_type_t<T>;
+};
+template <class T>
+using NumberOf_t = typename NumberOf<T>::type;
 
 // Half-open index range [begin, end) into the particle store.
 struct Range {

@@ -11,17 +11,11 @@ namespace {
 // Message values are doubles; enumerations travel as their integers.
 template <class T>
 double as_double(T v) {
-  if constexpr (std::is_enum_v<T>)
-    return static_cast<double>(static_cast<std::underlying_type_t<T>>(v));
-  else
-    return static_cast<double>(v);
+  return static_cast<double>(static_cast<NumberOf_t<T>>(v));
 }
 template <class T>
 T from_double(double v) {
-  if constexpr (std::is_enum_v<T>)
-    return static_cast<T>(static_cast<std::underlying_type_t<T>>(v));
-  else
-    return static_cast<T>(v);
+  return static_cast<T>(static_cast<NumberOf_t<T>>(v));
 }
 
 // Values into pieces of at most kPartPieceValues, each sent when full.

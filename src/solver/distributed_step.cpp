@@ -49,7 +49,7 @@ void append_rank_fields(RankPart& part, const Communicator& world, const Integri
   ParticleStore& p = s.particles;
   const LocalLayout& layout = part.layout;
   const Range owned = layout.owned;
-  OverRanks place(part, world);
+  OverRanks place(part, world, OverRanks::Timing::off);
   std::visit(
       [&](auto& model) {
         strain_fields(model, s, place);

@@ -64,11 +64,13 @@ class PassTime {
 };
 
 // The step on a rank's part: its owned particles, its ghosts' halos, contact
-// over the ranks, each pass timed without its halos.
+// over the ranks, each pass of a step timed without its halos (the fields
+// round, Timing::off, is not a step's).
 class OverRanks {
  public:
-  OverRanks(RankPart& part, const Communicator& world)
-      : part_(part), world_(world), halo_{part, world} {}
+  enum class Timing { on, off };
+  OverRanks(RankPart& part, const Communicator& world, Timing timing = Timing::on)
+      : part_(part), world_(world), halo_{part, world}, timed_(timing == Timing::on) {}
   Range own(const ParticleStore&) const { return part_.layout.owned; }
   // Gives the ghosts their owners' values of the fields.
   struct Halo {
@@ -84,10 +86,11 @@ class OverRanks {
   }
   PassTime time(Phase phase) {
     RankTimes& t = part_.times;
-    double* seconds = phase == Phase::contact  ? &t.contact_seconds
-                      : phase == Phase::strain ? &t.strain_seconds
-                      : phase == Phase::forces ? &t.forces_seconds
-                                               : nullptr;
+    double* seconds = !timed_                   ? nullptr
+                      : phase == Phase::contact ? &t.contact_seconds
+                      : phase == Phase::strain  ? &t.strain_seconds
+                      : phase == Phase::forces  ? &t.forces_seconds
+                                                : nullptr;
     return PassTime(seconds, part_.halo_cost);
   }
 
@@ -95,6 +98,7 @@ class OverRanks {
   RankPart& part_;
   const Communicator& world_;
   Halo halo_;
+  bool timed_;
 };
 
 // The strain pass of the part's own particles at their current positions

@@ -13,7 +13,7 @@
 
 namespace mpsolid {
 
-struct RankedStepper::Parts {
+struct RankStepping {
   RankPart part;
   double dt = 0;
   IntegrityLimits limits;
@@ -143,8 +143,8 @@ InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
 
 namespace {
 // A part from rank 0 ready to step.
-std::unique_ptr<RankedStepper::Parts> make_parts(const CaseSpec& spec, LocalPart local) {
-  auto parts = std::make_unique<RankedStepper::Parts>();
+std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) {
+  auto parts = std::make_unique<RankStepping>();
   parts->dt = spec.dt;
   parts->limits = {spec.stability.min_jacobian};
   parts->part = make_rank_part(spec, std::move(local));
@@ -154,7 +154,7 @@ std::unique_ptr<RankedStepper::Parts> make_parts(const CaseSpec& spec, LocalPart
 
 // This rank's part of a batch: the steps, then (when brought back) its slice
 // and report (and fields) for rank 0.
-std::vector<double> step_and_report(RankedStepper::Parts& parts, const Communicator& world,
+std::vector<double> step_and_report(RankStepping& parts, const Communicator& world,
                                     std::int64_t steps, Exchange how) {
   RankPart& p = parts.part;
   if (steps > 0) advance_rank_part(p, world, parts.dt, steps);
@@ -185,12 +185,14 @@ Exchange exchange_of(std::int64_t command) {
 }  // namespace
 
 void Followers::send_case(const std::string& resolved_toml) {
+  if (stage_ != Stage::before_case) throw std::logic_error("Followers: a second case");
   std::string text = resolved_toml;
   world_.broadcast(text);
   stage_ = Stage::stepping;
 }
 
 void Followers::send_command(std::int64_t steps, Exchange how) {
+  if (stage_ != Stage::stepping) throw std::logic_error("Followers: steps without a case");
   std::int64_t command = command_of(steps, how);
   world_.broadcast(command);
 }
@@ -334,7 +336,7 @@ int follow_rank_zero(const Communicator& world) {
     set_flush_subnormals(spec.flush_subnormals);
     // An empty first message: rank 0 refused the case (and reports it).
     std::vector<double> first = world.receive(0);
-    std::unique_ptr<RankedStepper::Parts> parts;
+    std::unique_ptr<RankStepping> parts;
     if (!first.empty()) {
       bool given = false;
       parts = make_parts(spec, unpack_local_part([&] {

@@ -63,6 +63,9 @@ class Followers {
   Stage stage_ = Stage::before_case;
 };
 
+// A rank's part and what stepping it needs (src/solver/ranked_stepper.cpp).
+struct RankStepping;
+
 // Rank 0's stepper over the ranks.
 class RankedStepper final : public Stepper {
  public:
@@ -90,8 +93,6 @@ class RankedStepper final : public Stepper {
   // As of the last batch that brought the slices back, with the slices' moves.
   std::vector<RankTimes> rank_times() const override;
 
-  struct Parts;  // a rank's part and what it needs to step it
-
  private:
   // Tells the followers; with `send_slices`, sends every rank its owned
   // slice of `global` (its particles, bodies and loads); `steps` decomposed
@@ -102,7 +103,7 @@ class RankedStepper final : public Stepper {
   void count_slice_move(int r, std::size_t doubles);
 
   Followers& followers_;
-  std::unique_ptr<Parts> parts_;
+  std::unique_ptr<RankStepping> parts_;
   std::vector<RankTimes> rank_times_;
   struct SliceMoves {
     double moves = 0, bytes = 0;
@@ -114,8 +115,8 @@ class RankedStepper final : public Stepper {
 };
 
 // A follower's whole life: receives the case, sets its part up, and steps
-// when rank 0 tells it until released. Returns its exit code (0; rank 0
-// reports failures).
+// when rank 0 tells it until released. Returns its exit code: 0, or 2 when
+// rank 0 refused the case (rank 0 reports failures).
 int follow_rank_zero(const Communicator& world);
 
 }  // namespace mpsolid
