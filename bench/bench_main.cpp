@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   register_skip_work_benchmarks();
   register_neighbor_benchmarks();
   register_contact_benchmarks();
+  register_team_benchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

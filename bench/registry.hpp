@@ -8,5 +8,6 @@ void register_kernel_benchmarks();     // bench_kernels.cpp
 void register_skip_work_benchmarks();  // bench_skip_work.cpp
 void register_neighbor_benchmarks();   // bench_neighbors.cpp
 void register_contact_benchmarks();    // bench_contact.cpp
+void register_team_benchmarks();       // bench_team.cpp
 
 }  // namespace mpsolid::bench
