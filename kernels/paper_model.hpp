@@ -267,9 +267,9 @@ class PaperModelT {
     };
     // The values of kLanes particles listed at `at`.
     const auto ends = [](const std::vector<double>& a, const std::uint32_t* at) {
-      Lanes v;
+      double v[kLanes];
       for (std::size_t l = 0; l < kLanes; ++l) v[l] = a[at[l]];
-      return v;
+      return load_lanes(v);
     };
     std::size_t k = first;
     for (; k + kLanes <= last; k += kLanes) {
