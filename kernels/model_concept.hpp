@@ -21,6 +21,7 @@
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/option_table.hpp"
+#include "src/core/ordered_sum.hpp"
 #include "src/core/particle_field.hpp"
 #include "src/core/particle_store.hpp"
 
@@ -55,5 +56,16 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
 }
 &&(M::forces_read_positions || requires(const M cm, ParticleStore& p, const BondTable& bonds,
                                         Range range) { cm.compute_forces_block(p, bonds, range); });
+
+// The model's strain energy of the particles of `range` (a current strain
+// pass), summed as ordered_sum sums: one range, or a rank's whole chunks
+// added in chunk order, give the same bits.
+template <class M>
+double summed_strain_energy(const M& model, const ParticleStore& p, const BondTable& bonds,
+                            Range range) {
+  return ordered_sum<1>(range.begin, range.end, [&](std::size_t i) {
+    return std::array<double, 1>{model.particle_strain_energy(p, bonds, i)};
+  })[0];
+}
 
 }  // namespace mpsolid

@@ -59,9 +59,8 @@ void append_rank_fields(RankPart& part, const Communicator& world, const Integri
                    p.pressure.begin() + static_cast<long>(owned.end));
         // Owned ranges start at a chunk boundary: each chunk is a serial one.
         for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk)
-          out.push_back(ordered_sum<1>(b, std::min(owned.end, b + kSumChunk), [&](std::size_t i) {
-            return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
-          })[0]);
+          out.push_back(
+              summed_strain_energy(model, p, s.bonds, {b, std::min(owned.end, b + kSumChunk)}));
         const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
         out.push_back(r.value);
         out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));

@@ -70,8 +70,8 @@ class OverRanks {
  public:
   enum class Timing { on, off };
   OverRanks(RankPart& part, const Communicator& world, Timing timing = Timing::on)
-      : part_(part), world_(world), halo_{part, world}, timed_(timing == Timing::on) {}
-  Range own(const ParticleStore&) const { return part_.layout.owned; }
+      : halo_{part, world}, timed_(timing == Timing::on) {}
+  Range own(const ParticleStore&) const { return halo_.part.layout.owned; }
   // Gives the ghosts their owners' values of the fields.
   struct Halo {
     RankPart& part;
@@ -82,22 +82,21 @@ class OverRanks {
   };
   Halo& halo() { return halo_; }
   void contact_pass(SolverState& s, std::int64_t step) {
-    rank_contact_pass(part_.contact, s, part_.layout, world_, step, part_.halo_cost);
+    RankPart& part = halo_.part;
+    rank_contact_pass(part.contact, s, part.layout, halo_.world, step, part.halo_cost);
   }
   PassTime time(Phase phase) {
-    RankTimes& t = part_.times;
+    RankTimes& t = halo_.part.times;
     double* seconds = !timed_                   ? nullptr
                       : phase == Phase::contact ? &t.contact_seconds
                       : phase == Phase::strain  ? &t.strain_seconds
                       : phase == Phase::forces  ? &t.forces_seconds
                                                 : nullptr;
-    return PassTime(seconds, part_.halo_cost);
+    return PassTime(seconds, halo_.part.halo_cost);
   }
 
  private:
-  RankPart& part_;
-  const Communicator& world_;
-  Halo halo_;
+  Halo halo_;  // the part and the world, which every method reads
   bool timed_;
 };
 

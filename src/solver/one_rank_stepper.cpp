@@ -1,9 +1,7 @@
 #include "src/solver/one_rank_stepper.hpp"
 
-#include <array>
 #include <variant>
 
-#include "src/core/ordered_sum.hpp"
 #include "src/solver/step.hpp"
 
 namespace mpsolid {
@@ -23,10 +21,7 @@ void OneRankStepper::refresh_fields(SolverState& state, PhaseTimers& timers) {
 double OneRankStepper::strain_energy(const SolverState& state) const {
   return std::visit(
       [&](const auto& model) {
-        return ordered_sum<1>(0, state.particles.size(), [&](std::size_t i) {
-          return std::array<double, 1>{
-              model.particle_strain_energy(state.particles, state.bonds, i)};
-        })[0];
+        return summed_strain_energy(model, state.particles, state.bonds, state.particles.all());
       },
       model_);
 }

@@ -152,6 +152,14 @@ std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) 
   return parts;
 }
 
+// A slice from rank 0 (the step, then the owned particles, bodies and loads)
+// into this rank's part.
+void take_slice(RankPart& p, const std::vector<double>& slice) {
+  p.local.step = static_cast<std::int64_t>(slice.at(0));
+  std::size_t at = 1;
+  Slice::read(p.local, p.layout.owned, slice, at);
+}
+
 // This rank's part of a batch: the steps, then (when brought back) its slice
 // and report (and fields) for rank 0.
 std::vector<double> step_and_report(RankStepping& parts, const Communicator& world,
@@ -263,19 +271,15 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   RankPart& p = parts_->part;
   followers_.send_command(steps, how);
   if (how.send_slices) {
-    for (int r = 1; r < world.size(); ++r) {
+    for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
       Slice::append(global, d.owned(r), slice);
-      world.send(r, slice);
       count_slice_move(r, slice.size() - 1);
+      if (r == 0)  // rank 0's own slice, through the same message form
+        take_slice(p, slice);
+      else
+        world.send(r, slice);
     }
-    // Rank 0's own slice, through the same message form.
-    std::vector<double> mine;
-    Slice::append(global, d.owned(0), mine);
-    count_slice_move(0, mine.size());
-    std::size_t at = 0;
-    Slice::read(p.local, p.layout.owned, mine, at);
-    p.local.step = global.step;
   }
   std::vector<double> mine = step_and_report(*parts_, world, steps, how);
   global.step = p.local.step;
@@ -351,13 +355,7 @@ int follow_rank_zero(const Communicator& world) {
       if (command < 0) return parts ? 0 : 2;
       if (!parts) throw std::logic_error("steps for a refused case");
       const Exchange how = exchange_of(command);
-      RankPart& p = parts->part;
-      if (how.send_slices) {
-        const std::vector<double> slice = world.receive(0);
-        p.local.step = static_cast<std::int64_t>(slice.at(0));
-        std::size_t at = 1;
-        Slice::read(p.local, p.layout.owned, slice, at);
-      }
+      if (how.send_slices) take_slice(parts->part, world.receive(0));
       const std::vector<double> back = step_and_report(*parts, world, steps_of(command), how);
       if (how.answered()) world.send(0, back);
     }
