@@ -158,15 +158,15 @@ class CorrectedGradientModel {
   // (S + Q) A^-1, which the force pass reads. A ghost's A^-1 is never read.
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
-    halo({field_of(p.x), field_of(p.y)});
+    halo("motion", {field_of(p.x), field_of(p.y)});
   }
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
     compute_deformation_gradient(p, bonds, range);
-    halo({deformation_gradient_field()});
+    halo("deformation gradient", {deformation_gradient_field()});
     compute_hourglass_stress(p, bonds, range);
-    halo({stress_field()});
+    halo("stress", {stress_field()});
   }
 
   // The strain pass's two parts: pass 1, then (once every particle's F is

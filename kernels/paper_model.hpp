@@ -118,26 +118,29 @@ class PaperModelT {
     strain_pass(p, bonds, range, none);
   }
 
-  // What the step's halos carry over MPI ranks (src/solver/step.hpp; on one
-  // rank `halo` does nothing): before pass 1, what it reads of a partner's
-  // motion; after it, the strain and pressure the force pass reads.
+  // What the step's halos carry between ranks or threads
+  // (src/solver/step.hpp; on one thread `halo` does nothing): before pass 1,
+  // what the slots read of a partner's motion (position and half angles);
+  // after it, the pressure the force pass reads (a partner's strain is
+  // never read).
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
-    halo({field_of(p.x), field_of(p.y), field_of(p.theta), field_of(p.half_cos),
-          field_of(p.half_sin)});
+    halo("motion", {field_of(p.x), field_of(p.y), field_of(p.half_cos), field_of(p.half_sin)});
   }
   // Pass 1: each bond's kinematics once (its owner's thread), then each
-  // particle's strain and pressure from its bonds' slots. Every particle's
-  // slots are computed whatever `range` is.
+  // particle's strain and pressure from its bonds' slots. The slots computed
+  // are those the particles of `range` read: the bonds owned in it, and
+  // those owned below it (a part's ghosts) by a dense direction reaching
+  // into it. (Bonds owned above `range` join two ghosts.)
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
-    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
-      compute_bond_slots(p, {b, e});
+    parallel_blocks(0, range.end, [&](std::size_t b, std::size_t e) {
+      compute_bond_slots(p, {b, e}, range.begin);
     });
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_strain(p, bonds, {b, e});
     });
-    halo({field_of(p.strain), field_of(p.pressure)});
+    halo("pressure", {field_of(p.pressure)});
   }
 
   // Pass 2 (needs pass 1 at the current state): force and torque.
@@ -254,7 +257,8 @@ class PaperModelT {
   // a time, with the same arithmetic. Bonds between two walls are skipped:
   // walls never move or turn (half angles exactly 1 and 0), so their slots
   // keep what the constructor put there, the bits this pass would compute.
-  void compute_bond_slots(const ParticleStore& p, Range owners) {
+  // Dense slots whose partner is below `partners_from` are skipped too.
+  void compute_bond_slots(const ParticleStore& p, Range owners, std::size_t partners_from) {
     const auto [first, last] = owned_extras(slots_, owners);
     const std::size_t fixed_end = p.walls.end;
     const auto extra = [&](std::size_t k) {
@@ -287,16 +291,17 @@ class PaperModelT {
                                   load_lanes(slot_[kR0x] + s), load_lanes(slot_[kR0y] + s)));
     }
     for (; k < last; ++k) extra(k);
-    for_each_dense_slot(slots_, owners, fixed_end,
-                        [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
-                          bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i],
-                                          &p.x[j], &p.y[j], &p.half_cos[j], &p.half_sin[j],
-                                          &slot_[kR0x][slot], &slot_[kR0y][slot],
-                                          &slot_[kStrainCoef][slot], &slot_[kRx][slot],
-                                          &slot_[kRy][slot], &slot_[kUx][slot], &slot_[kUy][slot],
-                                          &slot_[kInvLen][slot], &slot_[kStrainTerm][slot],
-                                          EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
-                        });
+    for_each_dense_slot(
+        slots_, owners, fixed_end,
+        [&](std::size_t count, std::size_t slot, std::size_t i, std::size_t j) {
+          bond_kinematics(count, &p.x[i], &p.y[i], &p.half_cos[i], &p.half_sin[i], &p.x[j], &p.y[j],
+                          &p.half_cos[j], &p.half_sin[j], &slot_[kR0x][slot], &slot_[kR0y][slot],
+                          &slot_[kStrainCoef][slot], &slot_[kRx][slot], &slot_[kRy][slot],
+                          &slot_[kUx][slot], &slot_[kUy][slot], &slot_[kInvLen][slot],
+                          &slot_[kStrainTerm][slot],
+                          EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
+        },
+        partners_from);
   }
 
   // One bond's kinematics seen from its owner i: r_ij, u_ij, 1 / |r_ij| and

@@ -218,6 +218,7 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
   facts.wall_seconds = seconds_since_start();
   facts.thread_wait_seconds = team_wait_seconds() - facts.wait_at_start;
   facts.rank_times = sim.rank_times();
+  facts.thread_crossing = sim.thread_crossing();
   {
     auto t = sim.timers().time(Phase::output);
     outputs.publish();

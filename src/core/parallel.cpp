@@ -103,27 +103,33 @@ void run_team(void (*body)(void*), void* context) {
 }
 
 // A counting barrier: the last thread to arrive opens the next generation.
-// The others spin briefly (a step's phases are microseconds apart), then
-// yield, so that on a busy machine a waiting thread gives its core to the
-// thread it waits for, or to another process, instead of burning it.
+// The others wait for it (wait_until_reaches: a step's phases are
+// microseconds apart, and on a busy machine a waiting thread gives its core
+// to the thread it waits for, or to another process, instead of burning it).
 void team_barrier() {
   TeamState& team_state = *team_slot.team;
-  const auto start = Clock::now();
   const std::size_t generation = team_state.generation.value.load(std::memory_order_acquire);
   if (team_state.arrived.value.fetch_add(1, std::memory_order_acq_rel) + 1 == team_slot.size) {
     team_state.arrived.value.store(0, std::memory_order_relaxed);
     team_state.generation.value.store(generation + 1, std::memory_order_release);
   } else {
-    while (team_state.generation.value.load(std::memory_order_acquire) == generation) {
-      if (Clock::now() - start < kSpin)
-        MPSOLID_PAUSE();
-      else
-        std::this_thread::yield();
-    }
+    wait_until_reaches(team_state.generation.value, generation + 1);
+  }
+}
+}  // namespace detail
+
+void wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value) {
+  using detail::Clock, detail::kSpin, detail::thread_wait;
+  if (counter.load(std::memory_order_acquire) >= value) return;
+  const auto start = Clock::now();
+  while (counter.load(std::memory_order_acquire) < value) {
+    if (Clock::now() - start < kSpin)
+      MPSOLID_PAUSE();
+    else
+      std::this_thread::yield();
   }
   thread_wait += Clock::now() - start;
 }
-}  // namespace detail
 
 double team_wait_seconds() {
   return 1e-9 * static_cast<double>(detail::total_wait_ns.load(std::memory_order_relaxed));

@@ -84,9 +84,15 @@ inline std::size_t chunk_length(std::size_t count) {
   return std::max(kMinChunk, (count + kChunksPerBlock - 1) / kChunksPerBlock);
 }
 
-// Seconds the team's threads have spent waiting at barriers, summed over
-// threads and teams since the program started (added when a team ends).
+// Seconds the team's threads have spent waiting at barriers (and for each
+// other's messages: wait_until_reaches), summed over threads and teams since
+// the program started (added when a team ends).
 double team_wait_seconds();
+
+// Waits until `counter` (another thread's, only ever increased) reaches
+// `value`: spins for a few microseconds, then yields the core, as the
+// team's barrier does; the wait counts as the team's.
+void wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value);
 
 // True on a thread that runs inside a team and is not serial.
 inline bool in_team() {

@@ -29,7 +29,7 @@ inline ParticleField field_of(std::vector<double>& values) {
 // A halo that carries nothing: the step on one rank, where every partner
 // is this process's own.
 struct NoHalo {
-  void operator()(std::initializer_list<ParticleField>) const {}
+  void operator()(const char*, std::initializer_list<ParticleField>) const {}
 };
 
 }  // namespace mpsolid

@@ -2,6 +2,8 @@
 // Wall time per phase of the run, for run.json and the closing table.
 #include <array>
 #include <chrono>
+#include <string>
+#include <vector>
 
 namespace mpsolid {
 
@@ -70,6 +72,24 @@ struct RankTimes {
   // The rank's slices of the state sent from and brought back to rank 0
   // (rank 0's own: copied), and their bytes.
   double slice_moves = 0, slice_bytes = 0;
+};
+
+// What crossed between the threads of a team stepping as ranks
+// (src/solver/thread_parts.hpp), for run.json's thread facts: per step and
+// summed over the threads, the values each named halo brought a thread from
+// the others and the 64-byte lines they filled, and the lines of the call
+// counters each call read; with each thread's part and times.
+struct HaloCrossing {
+  std::string name;
+  double bytes = 0, lines = 0;
+};
+struct ThreadCrossing {
+  int threads = 0;
+  double steps = 0;  // steps the parts took
+  std::vector<HaloCrossing> per_step;
+  double counter_lines_per_step = 0;
+  double calls_per_step = 0;  // the rendezvous of the team per step
+  std::vector<RankTimes> per_thread;
 };
 
 }  // namespace mpsolid

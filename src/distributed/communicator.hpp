@@ -1,35 +1,29 @@
 #pragma once
 // The ranks of a run (docs/mpi.md): MPI's world communicator when the build
 // has MPI (MPSOLID_HAVE_MPI) and the program started it, one rank otherwise.
-// Only what the decomposition needs: rank and size, an all-gather in rank
-// order, and pairwise exchanges with neighbouring ranks. Every call is
-// collective over the ranks involved and returns the same data at any
-// timing, so results never depend on message order.
+// What the decomposed step needs (RankGroup), and rank 0's messages to the
+// ranks that follow it. Every call is collective over the ranks involved and
+// returns the same data at any timing, so results never depend on message
+// order.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "src/distributed/rank_group.hpp"
+
 namespace mpsolid {
 
-class Communicator {
+class Communicator final : public RankGroup {
  public:
   // The world: every rank of the run (one, without MPI or before MpiSession).
   static const Communicator& world();
 
-  int rank() const { return rank_; }
-  int size() const { return size_; }
-
-  // Every rank's values, concatenated in rank order, on every rank.
-  std::vector<double> all_gather(const std::vector<double>& mine) const;
-  // Sends out[k] to rank peers[k] and receives what peers[k] sends this
-  // rank into in[k], which must already have that message's size (both
-  // sides know it from the halo plan: no count is exchanged, and the
-  // caller's buffers are reused from step to step). Every peer must list
-  // this rank in its own call.
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  std::vector<double> all_gather(const std::vector<double>& mine) const override;
   void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
-                std::vector<std::vector<double>>& in) const;
-  // The largest of every rank's value, on every rank.
-  std::int64_t max(std::int64_t mine) const;
+                std::vector<std::vector<double>>& in) const override;
+  std::int64_t max(std::int64_t mine) const override;
   // A message to one rank, and one from it (any length: the receiver
   // learns it). Messages between two ranks arrive in the order sent.
   void send(int to, const std::vector<double>& values) const;

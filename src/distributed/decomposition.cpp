@@ -14,14 +14,16 @@ int Decomposition::owner_of(std::size_t i) const {
   return static_cast<int>(after - starts.begin()) - 1;
 }
 
-Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole) {
+Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole,
+                        std::size_t align) {
   if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
+  if (align < 1) throw std::invalid_argument("decompose: cuts at multiples of at least 1");
   const std::size_t n = bonds.particle_count();
-  const std::size_t chunks = (n + kSumChunk - 1) / kSumChunk;
+  const std::size_t chunks = (n + align - 1) / align;
   // Work before each chunk boundary: bond entries plus particles.
   std::vector<double> work(chunks + 1, 0.0);
   for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t end = std::min(n, (c + 1) * kSumChunk);
+    const std::size_t end = std::min(n, (c + 1) * align);
     work[c + 1] = static_cast<double>(bonds.offsets[end] + end);
   }
   Decomposition d;
@@ -33,9 +35,9 @@ Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Ran
     const double target = work[chunks] * r / ranks;
     while (c < chunks && work[c + 1] <= target) ++c;
     if (c < chunks && target - work[c] > work[c + 1] - target) ++c;
-    std::size_t cut = std::min(n, c * kSumChunk);
+    std::size_t cut = std::min(n, c * align);
     for (const Range& whole : keep_whole)
-      if (cut > whole.begin && cut < whole.end) cut = whole.begin / kSumChunk * kSumChunk;
+      if (cut > whole.begin && cut < whole.end) cut = whole.begin / align * align;
     d.starts[static_cast<std::size_t>(r)] =
         std::max(d.starts[static_cast<std::size_t>(r) - 1], cut);
   }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "src/core/bonds.hpp"
+#include "src/core/ordered_sum.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -30,14 +31,15 @@ struct Decomposition {
   int owner_of(std::size_t i) const;
 };
 
-// Contiguous chunk-aligned ranges over the bond table's particles for
-// `ranks` ranks, balanced by bond entries + particles. A rank may own
-// nothing when there are fewer chunks than ranks. No cut falls inside a
-// range of `keep_whole` (rigid and loaded bodies, whose sums run over all
-// their particles): such a cut moves down to the chunk boundary at or
-// before the range's start.
+// Contiguous ranges over the bond table's particles for `ranks` ranks, each
+// cut at a multiple of `align` (the ordered sums' chunk for MPI ranks: see
+// above; threads, whose sums are taken on the whole state, cut anywhere),
+// balanced by bond entries + particles. A rank may own nothing when there
+// are fewer pieces than ranks. No cut falls inside a range of `keep_whole`
+// (rigid and loaded bodies, whose sums run over all their particles): such
+// a cut moves down to the multiple of `align` at or before the range's start.
 Decomposition decompose(const BondTable& bonds, int ranks,
-                        const std::vector<Range>& keep_whole = {});
+                        const std::vector<Range>& keep_whole = {}, std::size_t align = kSumChunk);
 
 // One rank's halo: its ghosts, and per neighbouring rank what it sends
 // (its own particles that rank needs) and receives (that rank's particles

@@ -1,5 +1,8 @@
 #include "src/distributed/halo_exchange.hpp"
 
+#include <algorithm>
+#include <cstring>
+
 namespace mpsolid {
 
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
@@ -16,7 +19,22 @@ LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout) {
   return halo;
 }
 
-void exchange_halo(const Communicator& world, LocalHalo& halo,
+HaloTally& HaloCost::tally(const char* name) {
+  auto t = std::find_if(tallies.begin(), tallies.end(),
+                        [&](const HaloTally& x) { return std::strcmp(x.name, name) == 0; });
+  if (t == tallies.end()) t = tallies.insert(tallies.end(), HaloTally{name});
+  t->calls += 1;
+  return *t;
+}
+
+void HaloTally::received(std::size_t message_bytes) {
+  bytes += static_cast<double>(message_bytes);
+  lines += static_cast<double>((message_bytes + 63) / 64);
+}
+
+// A message is field by field (component by component), each over the
+// listed particles in order: unit-stride writes, one strided read stream.
+void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
                    std::initializer_list<ParticleField> fields, HaloCost& cost) {
   CommunicationTime t(cost);
   std::size_t width = 0;
@@ -25,20 +43,28 @@ void exchange_halo(const Communicator& world, LocalHalo& halo,
   halo.out.resize(n);
   halo.in.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
+    const std::vector<std::uint32_t>& send = halo.send[k];
     std::vector<double>& message = halo.out[k];
-    message.clear();
-    for (const std::uint32_t i : halo.send[k])
-      for (const ParticleField& f : fields)
-        for (std::size_t c = 0; c < f.width; ++c) message.push_back(f.at(i, c));
+    message.resize(width * send.size());
+    double* out = message.data();
+    for (const ParticleField& f : fields)
+      for (std::size_t c = 0; c < f.width; ++c) {
+        const double* from = f.data + c * f.component_stride;
+        for (const std::uint32_t i : send) *out++ = from[i * f.particle_stride];
+      }
     halo.in[k].resize(width * halo.receive[k].size());
     cost.bytes_sent += 8.0 * static_cast<double>(message.size());
   }
   world.exchange(halo.peers, halo.out, halo.in);
+  HaloTally& tally = cost.tally(name);
   for (std::size_t k = 0; k < n; ++k) {
+    tally.received(8 * halo.in[k].size());
     const double* in = halo.in[k].data();
-    for (const std::uint32_t i : halo.receive[k])
-      for (const ParticleField& f : fields)
-        for (std::size_t c = 0; c < f.width; ++c) f.at(i, c) = *in++;
+    for (const ParticleField& f : fields)
+      for (std::size_t c = 0; c < f.width; ++c) {
+        double* to = f.data + c * f.component_stride;
+        for (const std::uint32_t i : halo.receive[k]) to[i * f.particle_stride] = *in++;
+      }
   }
 }
 

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "src/core/particle_field.hpp"
-#include "src/distributed/communicator.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/rank_group.hpp"
 
 namespace mpsolid {
 
@@ -23,10 +23,28 @@ struct LocalHalo {
 // The halo plan (global indices) in the layout's local indices.
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
 
-// What the halos cost this rank: wall time in exchanges, bytes sent.
+// What crossed to this rank from the others through one named halo (or
+// collective call), summed over its calls: the values received, and the
+// 64-byte lines they fill (each message counted from a line of its own, as
+// the threads' mailboxes place them: src/distributed/thread_ranks.hpp).
+struct HaloTally {
+  const char* name = "";
+  double calls = 0;
+  double bytes = 0;
+  double lines = 0;
+  // Counts one message of `message_bytes` received.
+  void received(std::size_t message_bytes);
+};
+
+// What the halos cost this rank: wall time in exchanges, bytes sent, and
+// what each named halo brought in.
 struct HaloCost {
   double seconds = 0;
   double bytes_sent = 0;
+  std::vector<HaloTally> tallies;  // in the order of their first calls
+
+  // Counts one call of halo `name` (a string literal); its messages follow.
+  HaloTally& tally(const char* name);
 };
 
 // Adds the wall time of its scope (communication) to a halo cost.
@@ -46,9 +64,9 @@ class CommunicationTime {
   std::chrono::steady_clock::time_point start_;
 };
 
-// Gives the ghosts their owners' values of the given fields. Collective
-// over the halo's peers.
-void exchange_halo(const Communicator& world, LocalHalo& halo,
+// Gives the ghosts their owners' values of the given fields, tallied under
+// `name`. Collective over the halo's peers.
+void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
                    std::initializer_list<ParticleField> fields, HaloCost& cost);
 
 }  // namespace mpsolid

@@ -38,6 +38,27 @@ double rate(const RunFacts& facts) {
   return facts.wall_seconds > 0 ? static_cast<double>(facts.steps) / facts.wall_seconds : 0.0;
 }
 
+// Each rank's (or thread's) particles, its passes' time, its halo exchanges
+// and the slices of the state it moved.
+Json ranks_json(const std::vector<RankTimes>& all, const char* key) {
+  Json ranks = Json::array();
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    const RankTimes& t = all[r];
+    ranks.push_back({{key, r},
+                     {"owned_particles", static_cast<std::int64_t>(t.owned)},
+                     {"ghosts", static_cast<std::int64_t>(t.ghosts)},
+                     {"contact_seconds", t.contact_seconds},
+                     {"strain_seconds", t.strain_seconds},
+                     {"forces_seconds", t.forces_seconds},
+                     {"halo_seconds", t.halo_seconds},
+                     {"halo_bytes_sent", t.halo_bytes_sent},
+                     {"peak_memory_bytes", t.peak_memory_bytes},
+                     {"slice_moves", static_cast<std::int64_t>(t.slice_moves)},
+                     {"slice_bytes", t.slice_bytes}});
+  }
+  return ranks;
+}
+
 // Summed over the threads: time spent at the step's barriers waiting for the
 // slowest (an imbalance, or a busy machine), its share of threads x wall
 // time, and the wall seconds stepped at each team size (fewer than
@@ -53,23 +74,28 @@ Json thread_facts_json(const RunFacts& facts) {
       {"team_size_changes", facts.team_size_changes}};
   // Over several ranks: each rank's particles, its passes' time, its halo
   // exchanges (waiting for the slowest rank included) and the bytes it sent.
-  if (!facts.rank_times.empty()) {
-    Json ranks = Json::array();
-    for (std::size_t r = 0; r < facts.rank_times.size(); ++r) {
-      const RankTimes& t = facts.rank_times[r];
-      ranks.push_back({{"rank", r},
-                       {"owned_particles", static_cast<std::int64_t>(t.owned)},
-                       {"ghosts", static_cast<std::int64_t>(t.ghosts)},
-                       {"contact_seconds", t.contact_seconds},
-                       {"strain_seconds", t.strain_seconds},
-                       {"forces_seconds", t.forces_seconds},
-                       {"halo_seconds", t.halo_seconds},
-                       {"halo_bytes_sent", t.halo_bytes_sent},
-                       {"peak_memory_bytes", t.peak_memory_bytes},
-                       {"slice_moves", static_cast<std::int64_t>(t.slice_moves)},
-                       {"slice_bytes", t.slice_bytes}});
+  if (!facts.rank_times.empty()) facts_json["per_rank"] = ranks_json(facts.rank_times, "rank");
+  // With several threads on one process, stepping as ranks: what crossed
+  // between them per step (summed over the threads; each rendezvous reads
+  // every other thread's counter line), and each thread's part.
+  const ThreadCrossing& c = facts.thread_crossing;
+  if (c.threads > 0) {
+    Json halos = Json::array();
+    double bytes = 0, lines = c.counter_lines_per_step;
+    for (const HaloCrossing& h : c.per_step) {
+      halos.push_back({{"halo", h.name}, {"bytes", h.bytes}, {"cache_lines", h.lines}});
+      bytes += h.bytes;
+      lines += h.lines;
     }
-    facts_json["per_rank"] = ranks;
+    facts_json["threads_as_ranks"] = {{"threads", c.threads},
+                                      {"steps", static_cast<std::int64_t>(c.steps)},
+                                      {"crossing_per_step",
+                                       {{"bytes", bytes},
+                                        {"cache_lines", lines},
+                                        {"rendezvous", c.calls_per_step},
+                                        {"counter_lines", c.counter_lines_per_step},
+                                        {"halos", halos}}},
+                                      {"per_thread", ranks_json(c.per_thread, "thread")}};
   }
   return facts_json;
 }

@@ -35,6 +35,8 @@ struct RunFacts {
   int ranks = 1;  // MPI ranks (docs/mpi.md)
   // Per rank over several ranks (this segment).
   std::vector<RankTimes> rank_times;
+  // The threads stepping as ranks on one process (threads = 0: none did).
+  ThreadCrossing thread_crossing;
   std::int64_t steps = 0;  // steps advanced in this run
   double wall_seconds = 0;
   int frames = 0;

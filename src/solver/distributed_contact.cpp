@@ -13,7 +13,7 @@ namespace {
 // candidates of the ranks, gathered in rank order, are all of them in
 // candidate order (ranks own ascending storage ranges).
 void gather_candidate_positions(const RankContact& rc, ContactState& c, ParticleStore& p,
-                                const Communicator& world, HaloCost& cost) {
+                                const RankGroup& world, HaloCost& cost) {
   CommunicationTime t(cost);
   std::vector<double> mine;
   for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a) {
@@ -22,6 +22,7 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
   }
   cost.bytes_sent += 8.0 * static_cast<double>(mine.size());
   const std::vector<double> all = world.all_gather(mine);
+  cost.tally("contact positions").received(8 * (all.size() - mine.size()));
   if (all.size() != 2 * (c.size() - c.first_moving))
     throw std::logic_error("contact: the ranks' candidates do not cover the moving ones");
   for (std::size_t a = c.first_moving; a < c.size(); ++a) {
@@ -34,7 +35,7 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
 // its candidates it neither owns nor gets from the bond halo, walls aside),
 // asked of their owners; what the others ask of it.
 LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const ParticleStore& p,
-                            const LocalLayout& layout, const Communicator& world, HaloCost& cost) {
+                            const LocalLayout& layout, const RankGroup& world, HaloCost& cost) {
   std::vector<std::uint32_t> need;  // global storage indices
   for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a)
     for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
@@ -55,6 +56,7 @@ LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const 
     cost.bytes_sent += 8.0 * static_cast<double>(request.size());
     all = world.all_gather(request);
   }
+  cost.tally("contact requests").received(8 * (all.size() - request.size()));
   const int me = world.rank();
   std::vector<std::vector<std::uint32_t>> send(static_cast<std::size_t>(world.size())),
       receive(send.size());
@@ -99,7 +101,7 @@ RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
 }
 
 void rebuild_rank_contact(RankContact& rc, SolverState& s, const LocalLayout& layout,
-                          const Communicator& world, HaloCost& cost) {
+                          const RankGroup& world, HaloCost& cost) {
   ContactState& c = s.contact;
   gather_candidate_positions(rc, c, s.particles, world, cost);
   build_contact_list(c, s.particles, s.bonds);
@@ -107,16 +109,18 @@ void rebuild_rank_contact(RankContact& rc, SolverState& s, const LocalLayout& la
 }
 
 void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layout,
-                       const Communicator& world, std::int64_t step, HaloCost& cost) {
+                       const RankGroup& world, std::int64_t step, HaloCost& cost) {
   ContactState& c = s.contact;
   ParticleStore& p = s.particles;
-  exchange_halo(world, rc.halo, {field_of(p.x), field_of(p.y)}, cost);
+  exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y)}, cost);
   compute_contact_forces(c, p, rc.owned, step);
   std::int64_t stale = 0;
   {
     CommunicationTime t(cost);
     stale = world.max(c.stale.step.load(std::memory_order_relaxed) == step ? 1 : 0);
   }
+  HaloTally& staleness = cost.tally("contact staleness");
+  for (int r = 1; r < world.size(); ++r) staleness.received(8);
   if (stale == 0) return;
   rebuild_rank_contact(rc, s, layout, world, cost);
   compute_contact_forces(c, p, rc.owned, step);

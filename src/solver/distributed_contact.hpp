@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "src/core/solver_state.hpp"
-#include "src/distributed/communicator.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/rank_group.hpp"
 
 namespace mpsolid {
 
@@ -39,12 +39,12 @@ RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
 // rank, the list rebuilt and the contact halo planned from it. The owned
 // and bond-ghost positions must be current.
 void rebuild_rank_contact(RankContact& rc, SolverState& s, const LocalLayout& layout,
-                          const Communicator& world, HaloCost& cost);
+                          const RankGroup& world, HaloCost& cost);
 
 // The contact pass of step `step` (after the bond halo's positions): the
 // contact halo's positions, this rank's candidates' forces, and when any
 // rank's list went stale a rebuild on every rank and the pass again.
 void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layout,
-                       const Communicator& world, std::int64_t step, HaloCost& cost);
+                       const RankGroup& world, std::int64_t step, HaloCost& cost);
 
 }  // namespace mpsolid

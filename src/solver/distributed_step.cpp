@@ -8,12 +8,12 @@
 
 namespace mpsolid {
 
-Decomposition decompose_state(const SolverState& global, int ranks) {
+Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align) {
   // Rigid and loaded bodies stay on one rank (their sums run over all of them).
   std::vector<Range> whole;
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
   for (const StepLoad& l : global.loads) whole.push_back(l.range);
-  return decompose(global.bonds, ranks, whole);
+  return decompose(global.bonds, ranks, whole, align);
 }
 
 RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
@@ -27,13 +27,12 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   return part;
 }
 
-RankPart make_rank_part(const CaseSpec& spec, const SolverState& global,
-                        const Communicator& world) {
+RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const RankGroup& world) {
   return make_rank_part(spec,
                         local_part(global, decompose_state(global, world.size()), world.rank()));
 }
 
-void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps) {
+void advance_rank_part(RankPart& part, const RankGroup& world, double dt, std::int64_t steps) {
   if (part.local.contact.enabled())
     rebuild_rank_contact(part.contact, part.local, part.layout, world, part.halo_cost);
   OverRanks place(part, world);
@@ -43,7 +42,7 @@ void advance_rank_part(RankPart& part, const Communicator& world, double dt, std
   part.local.step += steps;
 }
 
-void append_rank_fields(RankPart& part, const Communicator& world, const IntegrityLimits& limits,
+void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityLimits& limits,
                         std::vector<double>& out) {
   SolverState& s = part.local;
   ParticleStore& p = s.particles;

@@ -17,10 +17,10 @@
 #include "src/case/case_spec.hpp"
 #include "src/core/particle_field.hpp"
 #include "src/core/timers.hpp"
-#include "src/distributed/communicator.hpp"
 #include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
 #include "src/distributed/part_message.hpp"
+#include "src/distributed/rank_group.hpp"
 #include "src/solver/distributed_contact.hpp"
 #include "src/solver/step.hpp"
 
@@ -69,15 +69,17 @@ class PassTime {
 class OverRanks {
  public:
   enum class Timing { on, off };
-  OverRanks(RankPart& part, const Communicator& world, Timing timing = Timing::on)
+  OverRanks(RankPart& part, const RankGroup& world, Timing timing = Timing::on)
       : halo_{part, world}, timed_(timing == Timing::on) {}
   Range own(const ParticleStore&) const { return halo_.part.layout.owned; }
+  // The rank's one stepping thread does the serial bookkeeping of its part.
+  bool leads() const { return true; }
   // Gives the ghosts their owners' values of the fields.
   struct Halo {
     RankPart& part;
-    const Communicator& world;
-    void operator()(std::initializer_list<ParticleField> fields) {
-      exchange_halo(world, part.halo, fields, part.halo_cost);
+    const RankGroup& world;
+    void operator()(const char* name, std::initializer_list<ParticleField> fields) {
+      exchange_halo(world, part.halo, name, fields, part.halo_cost);
     }
   };
   Halo& halo() { return halo_; }
@@ -107,7 +109,7 @@ class OverRanks {
 // summed in the ordered sums' whole chunks, and the model's integrity check
 // among them (value, particle and neighbour in global storage indices,
 // failed, the criterion's characters).
-void append_rank_fields(RankPart& part, const Communicator& world, const IntegrityLimits& limits,
+void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityLimits& limits,
                         std::vector<double>& out);
 
 // What rank 0 reads of every rank's fields.
@@ -123,8 +125,8 @@ void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owne
                       ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields);
 
 // The cut of the set-up state `global` over `ranks`, rigid and loaded
-// bodies kept whole.
-Decomposition decompose_state(const SolverState& global, int ranks);
+// bodies kept whole, each cut at a multiple of `align` particles.
+Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align = kSumChunk);
 
 // A rank's part ready to step: its local part (as rank 0 sends it) with the
 // model made from it.
@@ -132,12 +134,12 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local);
 // This rank's part of the set-up state `global`, cut by decompose_state
 // (every rank holding `global`, as the tests do). Throws
 // std::invalid_argument for a case the decomposed step does not cover.
-RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const Communicator& world);
+RankPart make_rank_part(const CaseSpec& spec, const SolverState& global, const RankGroup& world);
 
 // Advances the part by `steps` decomposed steps of dt. Its owned particles,
 // bodies and loads must be current; the ghosts get their values from the
 // halos before any pass reads them (with contact, the list is built first,
 // from every rank's own candidates).
-void advance_rank_part(RankPart& part, const Communicator& world, double dt, std::int64_t steps);
+void advance_rank_part(RankPart& part, const RankGroup& world, double dt, std::int64_t steps);
 
 }  // namespace mpsolid

@@ -2,19 +2,40 @@
 
 #include <variant>
 
+#include "src/core/parallel.hpp"
 #include "src/solver/step.hpp"
 
 namespace mpsolid {
 
 OneRankStepper::OneRankStepper(const CaseSpec& spec, const SolverState& state)
-    : model_(make_model(spec.model, state.particles, state.bonds, spec.model_options)),
-      dt_(spec.dt) {}
+    : spec_(spec),
+      model_(make_model(spec.model, state.particles, state.bonds, spec.model_options)) {}
+
+OneRankStepper::~OneRankStepper() = default;
 
 void OneRankStepper::advance(SolverState& state, std::int64_t steps, PhaseTimers& timers) {
-  std::visit([&](auto& model) { advance_steps(model, state, dt_, timers, steps); }, model_);
+  const int threads = thread_count();
+  if (threads > 1) {
+    if (!parts_ || parts_->threads() != threads) {
+      bring_to_rank_zero(state);
+      if (parts_) crossing_ = parts_->crossing();
+      parts_.reset();  // one set of parts at a time
+      parts_ = std::make_unique<ThreadParts>(spec_, state, threads);
+      parts_behind_ = false;
+    }
+    if (parts_->advance(state, steps, parts_behind_, timers)) {
+      parts_behind_ = false;
+      parts_ahead_ = parts_ahead_ || steps > 0;
+      return;
+    }
+  }
+  bring_to_rank_zero(state);
+  std::visit([&](auto& model) { advance_steps(model, state, spec_.dt, timers, steps); }, model_);
+  parts_behind_ = parts_behind_ || steps > 0;
 }
 
 void OneRankStepper::refresh_fields(SolverState& state, PhaseTimers& timers) {
+  bring_to_rank_zero(state);
   std::visit([&](auto& model) { update_strain(model, state, timers); }, model_);
 }
 
@@ -33,6 +54,16 @@ IntegrityReport OneRankStepper::check_integrity(const SolverState& state,
         return model.check_integrity(state.particles, state.bonds, limits, state.particles.all());
       },
       model_);
+}
+
+void OneRankStepper::bring_to_rank_zero(SolverState& state) {
+  if (!parts_ahead_) return;
+  parts_->bring_back(state);
+  parts_ahead_ = false;
+}
+
+ThreadCrossing OneRankStepper::thread_crossing() const {
+  return parts_ ? parts_->crossing() : crossing_;
 }
 
 }  // namespace mpsolid

@@ -7,6 +7,7 @@
 
 #include "src/core/float_mode.hpp"
 #include "src/core/process_memory.hpp"
+#include "src/distributed/state_slice.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/simulation.hpp"
@@ -22,83 +23,6 @@ struct RankStepping {
 };
 
 namespace {
-// The evolving fields of a rigid body and of a load, as doubles: what moves
-// between ranks besides the particles.
-constexpr std::size_t fields_of(const RigidBody*) {
-  return 6;
-}
-void read_fields(const RigidBody& b, double* out) {
-  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) *out++ = x;
-}
-void write_fields(RigidBody& b, const double* in) {
-  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
-}
-constexpr std::size_t fields_of(const StepLoad*) {
-  return 3;
-}
-void read_fields(const StepLoad& l, double* out) {
-  out[0] = l.active ? 1.0 : 0.0;
-  out[1] = l.cx_on;
-  out[2] = l.cy_on;
-}
-void write_fields(StepLoad& l, const double* in) {
-  l.active = in[0] != 0.0;
-  l.cx_on = in[1];
-  l.cy_on = in[2];
-}
-
-bool inside(Range r, Range owned) {
-  return r.begin >= owned.begin && r.end <= owned.end;
-}
-
-// A rank's slice of a state: its owned particles' state arrays (storage
-// range `owned`), then the fields of the bodies and loads inside it, in
-// order. Rank 0 writes it from the whole state (the rank's global range) and
-// reads it back into it; each rank reads it into and writes it from its local
-// state (its local owned range, where every body and load is its own).
-class Slice {
- public:
-  static void append(const SolverState& global, Range owned, std::vector<double>& out) {
-    for (const StateArray& a : kStateArrays) {
-      const std::vector<double>& v = global.particles.*a.member;
-      out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
-                 v.begin() + static_cast<long>(owned.end));
-    }
-    append_items(global.rigid_bodies, owned, out);
-    append_items(global.loads, owned, out);
-  }
-  static void read(SolverState& global, Range owned, const std::vector<double>& in,
-                   std::size_t& at) {
-    for (const StateArray& a : kStateArrays) {
-      std::vector<double>& v = global.particles.*a.member;
-      std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
-                  v.begin() + static_cast<long>(owned.begin));
-      at += owned.size();
-    }
-    read_items(global.rigid_bodies, owned, in, at);
-    read_items(global.loads, owned, in, at);
-  }
-
- private:
-  template <class Item>
-  static void append_items(const std::vector<Item>& items, Range owned, std::vector<double>& out) {
-    for (const Item& item : items) {
-      if (!inside(item.range, owned)) continue;
-      out.resize(out.size() + fields_of(&item));
-      read_fields(item, out.data() + out.size() - fields_of(&item));
-    }
-  }
-  template <class Item>
-  static void read_items(std::vector<Item>& items, Range owned, const std::vector<double>& in,
-                         std::size_t& at) {
-    for (Item& item : items) {
-      if (!inside(item.range, owned)) continue;
-      write_fields(item, in.data() + at);
-      at += fields_of(&item);
-    }
-  }
-};
-
 // With its slice, what a rank reports: the first step its contact pass
 // found a pair too close (-1: none), its list rebuilds since its last
 // report, its times and halo cost so far, its particles and its peak memory.
@@ -157,7 +81,7 @@ std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) 
 void take_slice(RankPart& p, const std::vector<double>& slice) {
   p.local.step = static_cast<std::int64_t>(slice.at(0));
   std::size_t at = 1;
-  Slice::read(p.local, p.layout.owned, slice, at);
+  StateSlice::read(p.local, p.layout.owned, slice, at);
 }
 
 // This rank's part of a batch: the steps, then (when brought back) its slice
@@ -168,7 +92,7 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
   if (steps > 0) advance_rank_part(p, world, parts.dt, steps);
   std::vector<double> back;
   if (how.bring_back) {
-    Slice::append(p.local, p.layout.owned, back);
+    StateSlice::append(p.local, p.layout.owned, back);
     append_report(p, p.local.contact.rebuilds - parts.rebuilds_reported, back);
     parts.rebuilds_reported = p.local.contact.rebuilds;
   }
@@ -273,7 +197,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (how.send_slices) {
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
-      Slice::append(global, d.owned(r), slice);
+      StateSlice::append(global, d.owned(r), slice);
       count_slice_move(r, slice.size() - 1);
       if (r == 0)  // rank 0's own slice, through the same message form
         take_slice(p, slice);
@@ -291,7 +215,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
     if (how.bring_back) {
-      Slice::read(global, d.owned(r), back, at);
+      StateSlice::read(global, d.owned(r), back, at);
       count_slice_move(r, at);
       rank_times_.push_back(read_report(back, at, r, global.contact));
       at += kReportSize;

@@ -92,6 +92,8 @@ class RankedStepper final : public Stepper {
   void state_changed() override { ranks_behind_ = true; }
   // As of the last batch that brought the slices back, with the slices' moves.
   std::vector<RankTimes> rank_times() const override;
+  // Each rank steps with its threads forking and joining per loop.
+  ThreadCrossing thread_crossing() const override { return {}; }
 
  private:
   // Tells the followers; with `send_slices`, sends every rank its owned

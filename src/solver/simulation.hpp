@@ -59,6 +59,9 @@ class Simulation {
   // Over several MPI ranks: each rank's times, halo cost and memory so far;
   // empty on one rank.
   std::vector<RankTimes> rank_times() const { return stepper_->rank_times(); }
+  // On one process with several threads: what crossed between them per
+  // step (src/solver/thread_parts.hpp); threads = 0 when none stepped so.
+  ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh

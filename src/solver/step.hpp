@@ -99,6 +99,8 @@ class OneRank {
   explicit OneRank(PhaseTimers& timers) : timers_(timers) {}
   // The particles this place computes: all of them.
   Range own(const ParticleStore& p) const { return p.all(); }
+  // The team's rank 0 does the serial bookkeeping.
+  bool leads() const { return team_rank() == 0; }
   NoHalo& halo() { return halo_; }
   void contact_pass(SolverState& s, std::int64_t step) { mpsolid::contact_pass(s, step); }
   TeamPhase time(Phase phase) { return TeamPhase(timers_, phase); }
@@ -149,7 +151,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     auto t = place.time(Phase::strain);
     // Positions stay put until the force pass, and the switch-on is read
     // only after the strain pass's closing barrier.
-    if (team_rank() == 0 && !s.loads.empty())
+    if (place.leads() && !s.loads.empty())
       serial_section([&] { activate_loads(p, s.loads, step); });
     model.strain_pass(p, s.bonds, place.own(p), place.halo());
   }

@@ -1,6 +1,7 @@
 #pragma once
-// How a Simulation steps its state: on this process (OneRankStepper) or over
-// MPI ranks (RankedStepper, docs/mpi.md). The Simulation holds one of them
+// How a Simulation steps its state: on this process (OneRankStepper, its
+// threads as ranks when there are several) or over MPI ranks
+// (RankedStepper, docs/mpi.md). The Simulation holds one of them
 // and never asks which; everything that differs between the two lives in
 // their implementations.
 #include <cstdint>
@@ -28,14 +29,17 @@ class Stepper {
   virtual IntegrityReport check_integrity(const SolverState& state,
                                           const IntegrityLimits& limits) const = 0;
   // Brings the particles stepped since the last call into `state` (over
-  // ranks, to rank 0); nothing to do on one rank.
+  // ranks, to rank 0; on one process, from the threads' parts).
   virtual void bring_to_rank_zero(SolverState& state) = 0;
-  // `state` was changed here (a restore): over ranks, the next advance sends
-  // the ranks their slices of it again.
+  // `state` was changed here (a restore): the next advance gives the ranks
+  // (or the threads' parts) their slices of it again.
   virtual void state_changed() = 0;
   // Each rank's times, halo cost and memory so far, for run.json (empty on
   // one rank).
   virtual std::vector<RankTimes> rank_times() const = 0;
+  // With threads stepping as ranks on one process: what crossed between
+  // them per step, and each thread's part (threads = 0 otherwise).
+  virtual ThreadCrossing thread_crossing() const = 0;
 };
 
 }  // namespace mpsolid

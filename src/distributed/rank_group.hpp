@@ -1,0 +1,33 @@
+#pragma once
+// The ranks a decomposed step runs over (docs/mpi.md): MPI's processes (the
+// Communicator) or the threads of one team, each with its own part of the
+// state (ThreadRanks, src/distributed/thread_ranks.hpp). Only what the step
+// needs of them: rank and size, an all-gather in rank order, pairwise
+// exchanges with neighbouring ranks and a maximum. Every call is collective
+// over the ranks involved and returns the same data at any timing, so
+// results never depend on message order.
+#include <cstdint>
+#include <vector>
+
+namespace mpsolid {
+
+class RankGroup {
+ public:
+  virtual ~RankGroup() = default;
+
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  // Every rank's values, concatenated in rank order, on every rank.
+  virtual std::vector<double> all_gather(const std::vector<double>& mine) const = 0;
+  // Sends out[k] to rank peers[k] and receives what peers[k] sends this
+  // rank into in[k], which must already have that message's size (both
+  // sides know it from the halo plan: no count is exchanged, and the
+  // caller's buffers are reused from step to step). Every peer must list
+  // this rank in its own call.
+  virtual void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
+                        std::vector<std::vector<double>>& in) const = 0;
+  // The largest of every rank's value, on every rank.
+  virtual std::int64_t max(std::int64_t mine) const = 0;
+};
+
+}  // namespace mpsolid

@@ -1,0 +1,78 @@
+#include "src/distributed/state_slice.hpp"
+
+#include <algorithm>
+
+namespace mpsolid {
+
+namespace {
+// The evolving fields of a rigid body and of a load, as doubles: what moves
+// between ranks besides the particles.
+constexpr std::size_t fields_of(const RigidBody*) {
+  return 6;
+}
+void read_fields(const RigidBody& b, double* out) {
+  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) *out++ = x;
+}
+void write_fields(RigidBody& b, const double* in) {
+  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
+}
+constexpr std::size_t fields_of(const StepLoad*) {
+  return 3;
+}
+void read_fields(const StepLoad& l, double* out) {
+  out[0] = l.active ? 1.0 : 0.0;
+  out[1] = l.cx_on;
+  out[2] = l.cy_on;
+}
+void write_fields(StepLoad& l, const double* in) {
+  l.active = in[0] != 0.0;
+  l.cx_on = in[1];
+  l.cy_on = in[2];
+}
+
+bool inside(Range r, Range owned) {
+  return r.begin >= owned.begin && r.end <= owned.end;
+}
+
+template <class Item>
+void append_items(const std::vector<Item>& items, Range owned, std::vector<double>& out) {
+  for (const Item& item : items) {
+    if (!inside(item.range, owned)) continue;
+    out.resize(out.size() + fields_of(&item));
+    read_fields(item, out.data() + out.size() - fields_of(&item));
+  }
+}
+template <class Item>
+void read_items(std::vector<Item>& items, Range owned, const std::vector<double>& in,
+                std::size_t& at) {
+  for (Item& item : items) {
+    if (!inside(item.range, owned)) continue;
+    write_fields(item, in.data() + at);
+    at += fields_of(&item);
+  }
+}
+}  // namespace
+
+void StateSlice::append(const SolverState& state, Range owned, std::vector<double>& out) {
+  for (const StateArray& a : kStateArrays) {
+    const std::vector<double>& v = state.particles.*a.member;
+    out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
+               v.begin() + static_cast<long>(owned.end));
+  }
+  append_items(state.rigid_bodies, owned, out);
+  append_items(state.loads, owned, out);
+}
+
+void StateSlice::read(SolverState& state, Range owned, const std::vector<double>& in,
+                      std::size_t& at) {
+  for (const StateArray& a : kStateArrays) {
+    std::vector<double>& v = state.particles.*a.member;
+    std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
+                v.begin() + static_cast<long>(owned.begin));
+    at += owned.size();
+  }
+  read_items(state.rigid_bodies, owned, in, at);
+  read_items(state.loads, owned, in, at);
+}
+
+}  // namespace mpsolid

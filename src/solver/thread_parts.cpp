@@ -1,0 +1,167 @@
+#include "src/solver/thread_parts.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <stdexcept>
+
+#include "src/core/parallel.hpp"
+#include "src/distributed/part_message.hpp"
+#include "src/distributed/state_slice.hpp"
+#include "src/solver/distributed_step.hpp"
+
+namespace mpsolid {
+
+struct ThreadPart {
+  ThreadPart(RankPart p, ThreadMailboxes& boxes, int rank)
+      : part(std::move(p)), ranks(boxes, rank), rebuilds_reported(part.local.contact.rebuilds) {}
+  RankPart part;
+  ThreadRanks ranks;
+  std::int64_t rebuilds_reported;  // contact list rebuilds already given back
+};
+
+template <class F>
+bool ThreadParts::on_each_thread(F&& f) {
+  const auto size = static_cast<std::size_t>(threads());
+  std::atomic<bool> whole{true};
+  run_in_team([&] {
+    if (team_size() != size) {  // the same on every thread: none runs f
+      whole.store(false, std::memory_order_relaxed);
+      return;
+    }
+    serial_section([&] { f(static_cast<int>(team_rank())); });
+  });
+  return whole.load(std::memory_order_relaxed);
+}
+
+ThreadParts::ThreadParts(const CaseSpec& spec, const SolverState& global, int threads)
+    : decomposition_(decompose_state(global, threads, 1)),
+      boxes_(threads),
+      parts_(static_cast<std::size_t>(threads)),
+      dt_(spec.dt) {
+  // Building a part does no rendezvous, so a thread that fails leaves no
+  // other waiting: its exception is rethrown here.
+  std::vector<std::exception_ptr> failed(parts_.size());
+  const bool whole = on_each_thread([&](int t) {
+    try {
+      parts_[static_cast<std::size_t>(t)] = std::make_unique<ThreadPart>(
+          make_rank_part(spec, local_part(global, decomposition_, t)), boxes_, t);
+    } catch (...) {
+      failed[static_cast<std::size_t>(t)] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  if (!whole) throw std::runtime_error("ThreadParts: OpenMP gave a team of another size");
+}
+
+ThreadParts::~ThreadParts() = default;
+
+bool ThreadParts::advance(SolverState& global, std::int64_t steps, bool take_slices,
+                          PhaseTimers& timers) {
+  const RankTimes before = parts_[0]->part.times;
+  const bool whole = on_each_thread([&](int t) {
+    ThreadPart& mine = *parts_[static_cast<std::size_t>(t)];
+    RankPart& part = mine.part;
+    if (take_slices) {
+      std::vector<double> slice;
+      StateSlice::append(global, decomposition_.owned(t), slice);
+      std::size_t at = 0;
+      StateSlice::read(part.local, part.layout.owned, slice, at);
+      part.local.step = global.step;
+    }
+    advance_rank_part(part, mine.ranks, dt_, steps);
+  });
+  if (!whole) return false;
+  if (take_slices) {
+    slice_moves_ += 1;
+    slice_bytes_ += 8.0 * static_cast<double>(kStateArrays.size() * global.particles.size());
+  }
+  steps_ += steps;
+  global.step = parts_[0]->part.local.step;
+  // Thread 0's passes stand for the team's in the phase table.
+  const RankTimes& after = parts_[0]->part.times;
+  const auto add = [&](Phase phase, double seconds) {
+    timers.add(phase, std::chrono::duration_cast<PhaseTimers::Clock::duration>(
+                          std::chrono::duration<double>(seconds)));
+  };
+  add(Phase::contact, after.contact_seconds - before.contact_seconds);
+  add(Phase::strain, after.strain_seconds - before.strain_seconds);
+  add(Phase::forces, after.forces_seconds - before.forces_seconds);
+  return true;
+}
+
+void ThreadParts::bring_back(SolverState& global) {
+  const auto give_back = [&](int t) {
+    const RankPart& part = parts_[static_cast<std::size_t>(t)]->part;
+    std::vector<double> slice;
+    StateSlice::append(part.local, part.layout.owned, slice);
+    std::size_t at = 0;
+    StateSlice::read(global, decomposition_.owned(t), slice, at);
+    // And what the last step left in the work arrays (half angles, strain,
+    // pressure, forces), so that the whole state is the one a single thread
+    // leaves, every array of it.
+    const Range from = part.layout.owned;
+    const std::size_t to = decomposition_.owned(t).begin;
+    for_each_particle_member([&](const auto& info, auto member) {
+      if (info.role != ArrayRole::work) return;
+      const auto& source = part.local.particles.*member;
+      std::copy(source.begin() + static_cast<long>(from.begin),
+                source.begin() + static_cast<long>(from.end),
+                (global.particles.*member).begin() + static_cast<long>(to));
+    });
+  };
+  // Each thread its own slice; on a team of another size (the thread count
+  // changed since the batch), this thread every slice.
+  if (!on_each_thread(give_back))
+    for (int t = 0; t < threads(); ++t) give_back(t);
+  slice_moves_ += 1;
+  slice_bytes_ += 8.0 * static_cast<double>(kStateArrays.size() * global.particles.size());
+  // Contact: the first step any part found a pair too close; the rebuilds,
+  // which every part makes together, counted once.
+  ContactState& contact = global.contact;
+  for (std::unique_ptr<ThreadPart>& mine : parts_) {
+    const std::int64_t step = mine->part.local.contact.too_close.step.load();
+    const std::int64_t first = contact.too_close.step.load();
+    if (step >= 0 && (first < 0 || step < first)) contact.too_close.step.store(step);
+  }
+  ThreadPart& lead = *parts_[0];
+  contact.rebuilds += lead.part.local.contact.rebuilds - lead.rebuilds_reported;
+  for (std::unique_ptr<ThreadPart>& mine : parts_)
+    mine->rebuilds_reported = mine->part.local.contact.rebuilds;
+}
+
+ThreadCrossing ThreadParts::crossing() const {
+  ThreadCrossing c;
+  c.threads = threads();
+  c.steps = static_cast<double>(steps_);
+  if (steps_ == 0) return c;
+  const double steps = c.steps;
+  for (const std::unique_ptr<ThreadPart>& mine : parts_) {
+    const RankPart& part = mine->part;
+    for (const HaloTally& t : part.halo_cost.tallies) {
+      auto at = std::find_if(c.per_step.begin(), c.per_step.end(),
+                             [&](const HaloCrossing& h) { return h.name == t.name; });
+      if (at == c.per_step.end()) at = c.per_step.insert(c.per_step.end(), HaloCrossing{t.name});
+      at->bytes += t.bytes / steps;
+      at->lines += t.lines / steps;
+    }
+    RankTimes times = part.times;
+    times.halo_seconds = part.halo_cost.seconds;
+    times.halo_bytes_sent = part.halo_cost.bytes_sent;
+    times.owned = static_cast<double>(part.layout.owned.size());
+    times.ghosts = static_cast<double>(part.layout.size() - part.layout.owned.size());
+    times.slice_moves = slice_moves_;
+    times.slice_bytes = slice_bytes_ / c.threads;
+    c.per_thread.push_back(times);
+  }
+  // Every call is a rendezvous: each thread reads every other's counter.
+  double calls = 0;
+  for (const HaloTally& t : parts_[0]->part.halo_cost.tallies) calls += t.calls;
+  c.calls_per_step = calls / steps;
+  c.counter_lines_per_step = c.calls_per_step * c.threads * (c.threads - 1);
+  return c;
+}
+
+}  // namespace mpsolid

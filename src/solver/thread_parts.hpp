@@ -1,0 +1,64 @@
+#pragma once
+// The step on one process with several threads: the threads as ranks
+// (docs/performance.md). The state is cut as it is over MPI ranks
+// (src/distributed/decomposition.hpp, rigid and loaded bodies kept whole,
+// cut anywhere else), and each thread builds and steps its own part (its
+// particles and one layer of ghosts, their bonds, the model made from them)
+// in memory it allocated and touched first. The halos the model names go
+// through the team's mailboxes (src/distributed/thread_ranks.hpp): nothing
+// a thread writes in a step is written by another, and all it reads of
+// another thread's writing is the halos' values and one counter per call.
+// Each owned particle computes exactly what the serial step computes, in
+// the same order (as over MPI ranks): the same bits at any thread count.
+//
+// The whole state stays the home of the particles between batches: the
+// parts take their slices of it before a batch when it changed, and give
+// them back when it is read.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "src/case/case_spec.hpp"
+#include "src/core/solver_state.hpp"
+#include "src/core/timers.hpp"
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/thread_ranks.hpp"
+
+namespace mpsolid {
+
+struct ThreadPart;  // a thread's part and its view of the team (thread_parts.cpp)
+
+class ThreadParts {
+ public:
+  // Cuts `global` for `threads` threads; each thread builds its part from
+  // it, on itself. Call outside a team, with `threads` the thread count.
+  ThreadParts(const CaseSpec& spec, const SolverState& global, int threads);
+  ~ThreadParts();
+  ThreadParts(const ThreadParts&) = delete;
+  ThreadParts& operator=(const ThreadParts&) = delete;
+
+  int threads() const { return boxes_.size(); }
+  // Steps `steps` steps, each thread its part; with `take_slices`, the parts
+  // take their slices of `global` first. `global.step` follows. False, with
+  // nothing done, when OpenMP gave a team of another size.
+  bool advance(SolverState& global, std::int64_t steps, bool take_slices, PhaseTimers& timers);
+  // Gives every part's slice back to `global` (with contact's counters).
+  void bring_back(SolverState& global);
+  // What crossed between the threads per step, and each thread's part and times.
+  ThreadCrossing crossing() const;
+
+ private:
+  // Runs f(rank) on each thread of a team of threads(), serially within
+  // each; false (nothing run) when the team has another size.
+  template <class F>
+  bool on_each_thread(F&& f);
+
+  Decomposition decomposition_;
+  ThreadMailboxes boxes_;
+  std::vector<std::unique_ptr<ThreadPart>> parts_;
+  double dt_;
+  std::int64_t steps_ = 0;
+  double slice_moves_ = 0, slice_bytes_ = 0;
+};
+
+}  // namespace mpsolid
