@@ -118,9 +118,9 @@ void team_barrier() {
 }
 }  // namespace detail
 
-void wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value) {
+double wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value) {
   using detail::Clock, detail::kSpin, detail::thread_wait;
-  if (counter.load(std::memory_order_acquire) >= value) return;
+  if (counter.load(std::memory_order_acquire) >= value) return 0.0;
   const auto start = Clock::now();
   while (counter.load(std::memory_order_acquire) < value) {
     if (Clock::now() - start < kSpin)
@@ -128,7 +128,9 @@ void wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t val
     else
       std::this_thread::yield();
   }
-  thread_wait += Clock::now() - start;
+  const Clock::duration waited = Clock::now() - start;
+  thread_wait += waited;
+  return std::chrono::duration<double>(waited).count();
 }
 
 double team_wait_seconds() {

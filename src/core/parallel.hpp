@@ -91,8 +91,9 @@ double team_wait_seconds();
 
 // Waits until `counter` (another thread's, only ever increased) reaches
 // `value`: spins for a few microseconds, then yields the core, as the
-// team's barrier does; the wait counts as the team's.
-void wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value);
+// team's barrier does; the wait counts as the team's. Returns the seconds
+// waited.
+double wait_until_reaches(const std::atomic<std::size_t>& counter, std::size_t value);
 
 // True on a thread that runs inside a team and is not serial.
 inline bool in_team() {

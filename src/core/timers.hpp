@@ -66,6 +66,7 @@ struct RankTimes {
   double strain_seconds = 0;   // the strain pass(es)
   double forces_seconds = 0;   // forces and integration
   double halo_seconds = 0;
+  double halo_wait_seconds = 0;  // of halo_seconds, waiting for the others (threads as ranks)
   double halo_bytes_sent = 0;
   double owned = 0, ghosts = 0;  // particles owned, and held for its passes
   double peak_memory_bytes = 0;  // the rank's peak resident memory

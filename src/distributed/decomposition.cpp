@@ -14,17 +14,30 @@ int Decomposition::owner_of(std::size_t i) const {
   return static_cast<int>(after - starts.begin()) - 1;
 }
 
+std::vector<double> particle_work(const BondTable& bonds) {
+  std::vector<double> work(bonds.particle_count());
+  for (std::size_t i = 0; i < work.size(); ++i)
+    work[i] = static_cast<double>(bonds.end(i) - bonds.begin(i) + 1);
+  return work;
+}
+
 Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole,
                         std::size_t align) {
+  return decompose_costs(particle_work(bonds), ranks, keep_whole, align);
+}
+
+Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
+                              const std::vector<Range>& keep_whole, std::size_t align) {
   if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
   if (align < 1) throw std::invalid_argument("decompose: cuts at multiples of at least 1");
-  const std::size_t n = bonds.particle_count();
+  const std::size_t n = cost.size();
   const std::size_t chunks = (n + align - 1) / align;
-  // Work before each chunk boundary: bond entries plus particles.
+  // Work before each chunk boundary.
   std::vector<double> work(chunks + 1, 0.0);
   for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t end = std::min(n, (c + 1) * align);
-    work[c + 1] = static_cast<double>(bonds.offsets[end] + end);
+    double sum = 0.0;
+    for (std::size_t i = c * align; i < std::min(n, (c + 1) * align); ++i) sum += cost[i];
+    work[c + 1] = work[c] + sum;
   }
   Decomposition d;
   d.starts.assign(static_cast<std::size_t>(ranks) + 1, n);

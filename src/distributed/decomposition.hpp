@@ -41,6 +41,14 @@ struct Decomposition {
 Decomposition decompose(const BondTable& bonds, int ranks,
                         const std::vector<Range>& keep_whole = {}, std::size_t align = kSumChunk);
 
+// Each particle's work as decompose counts it: its bond entries plus one.
+std::vector<double> particle_work(const BondTable& bonds);
+// The same cut over given per-particle costs (decompose: particle_work; the
+// threads as ranks re-cut by what each thread measured).
+Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
+                              const std::vector<Range>& keep_whole = {},
+                              std::size_t align = kSumChunk);
+
 // One rank's halo: its ghosts, and per neighbouring rank what it sends
 // (its own particles that rank needs) and receives (that rank's particles
 // it needs). All storage indices, ascending; neighbours ascending.

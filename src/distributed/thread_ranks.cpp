@@ -65,7 +65,8 @@ std::size_t ThreadRanks::publish_and_wait() const {
   const std::size_t call = calls_;
   mine().calls.store(call, std::memory_order_release);
   for (int r = 0; r < size(); ++r)
-    if (r != rank_) wait_until_reaches(boxes_.boxes_[static_cast<std::size_t>(r)].calls, call);
+    if (r != rank_)
+      waited_ += wait_until_reaches(boxes_.boxes_[static_cast<std::size_t>(r)].calls, call);
   return call & 1;
 }
 

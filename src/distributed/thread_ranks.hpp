@@ -50,6 +50,8 @@ class ThreadRanks final : public RankGroup {
   void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
                 std::vector<std::vector<double>>& in) const override;
   std::int64_t max(std::int64_t mine) const override;
+  // Seconds this thread has waited for the others' letters, all calls.
+  double waited_seconds() const { return waited_; }
 
  private:
   // This thread's letters for the next call (the call's parity's set).
@@ -61,6 +63,7 @@ class ThreadRanks final : public RankGroup {
   ThreadMailboxes& boxes_;
   int rank_;
   mutable std::size_t calls_ = 0;
+  mutable double waited_ = 0;
 };
 
 }  // namespace mpsolid

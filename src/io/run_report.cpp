@@ -51,6 +51,7 @@ Json ranks_json(const std::vector<RankTimes>& all, const char* key) {
                      {"strain_seconds", t.strain_seconds},
                      {"forces_seconds", t.forces_seconds},
                      {"halo_seconds", t.halo_seconds},
+                     {"halo_wait_seconds", t.halo_wait_seconds},
                      {"halo_bytes_sent", t.halo_bytes_sent},
                      {"peak_memory_bytes", t.peak_memory_bytes},
                      {"slice_moves", static_cast<std::int64_t>(t.slice_moves)},

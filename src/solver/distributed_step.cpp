@@ -8,12 +8,14 @@
 
 namespace mpsolid {
 
-Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align) {
+Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align,
+                              const std::vector<double>* cost) {
   // Rigid and loaded bodies stay on one rank (their sums run over all of them).
   std::vector<Range> whole;
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
   for (const StepLoad& l : global.loads) whole.push_back(l.range);
-  return decompose(global.bonds, ranks, whole, align);
+  return cost ? decompose_costs(*cost, ranks, whole, align)
+              : decompose(global.bonds, ranks, whole, align);
 }
 
 RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {

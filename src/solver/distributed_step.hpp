@@ -125,8 +125,10 @@ void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owne
                       ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields);
 
 // The cut of the set-up state `global` over `ranks`, rigid and loaded
-// bodies kept whole, each cut at a multiple of `align` particles.
-Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align = kSumChunk);
+// bodies kept whole, each cut at a multiple of `align` particles, balancing
+// `cost` per particle (null: particle_work).
+Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align = kSumChunk,
+                              const std::vector<double>* cost = nullptr);
 
 // A rank's part ready to step: its local part (as rank 0 sends it) with the
 // model made from it.

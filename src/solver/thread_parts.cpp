@@ -36,17 +36,23 @@ bool ThreadParts::on_each_thread(F&& f) {
 }
 
 ThreadParts::ThreadParts(const CaseSpec& spec, const SolverState& global, int threads)
-    : decomposition_(decompose_state(global, threads, 1)),
-      boxes_(threads),
-      parts_(static_cast<std::size_t>(threads)),
-      dt_(spec.dt) {
+    : spec_(spec),
+      decomposition_(decompose_state(global, threads, 1)),
+      parts_(static_cast<std::size_t>(threads)) {
+  build(global);
+}
+
+void ThreadParts::build(const SolverState& global) {
+  boxes_ = std::make_unique<ThreadMailboxes>(threads());
+  steps_ = 0;
   // Building a part does no rendezvous, so a thread that fails leaves no
   // other waiting: its exception is rethrown here.
   std::vector<std::exception_ptr> failed(parts_.size());
   const bool whole = on_each_thread([&](int t) {
     try {
+      parts_[static_cast<std::size_t>(t)].reset();  // its memory freed on its own thread
       parts_[static_cast<std::size_t>(t)] = std::make_unique<ThreadPart>(
-          make_rank_part(spec, local_part(global, decomposition_, t)), boxes_, t);
+          make_rank_part(spec_, local_part(global, decomposition_, t)), *boxes_, t);
     } catch (...) {
       failed[static_cast<std::size_t>(t)] = std::current_exception();
     }
@@ -54,6 +60,41 @@ ThreadParts::ThreadParts(const CaseSpec& spec, const SolverState& global, int th
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
   if (!whole) throw std::runtime_error("ThreadParts: OpenMP gave a team of another size");
+}
+
+void ThreadParts::rebalance(SolverState& global) {
+  if (recuts_ >= kRecuts) return;
+  std::vector<double> busy;
+  for (const std::unique_ptr<ThreadPart>& mine : parts_) {
+    const RankTimes& t = mine->part.times;
+    busy.push_back(t.strain_seconds + t.forces_seconds + t.contact_seconds);
+  }
+  const auto [least, most] = std::minmax_element(busy.begin(), busy.end());
+  if (*least < kMeasureSeconds) return;
+  if (*most <= kImbalance * *least) {
+    recuts_ = kRecuts;  // balanced: measured no more
+    return;
+  }
+  // Each thread's seconds spread over its particles by their work.
+  const std::vector<double> work = particle_work(global.bonds);
+  std::vector<double> cost(work.size());
+  for (int t = 0; t < threads(); ++t) {
+    const Range r = decomposition_.owned(t);
+    double total = 0.0;
+    for (std::size_t i = r.begin; i < r.end; ++i) total += work[i];
+    for (std::size_t i = r.begin; i < r.end; ++i)
+      cost[i] = work[i] * busy[static_cast<std::size_t>(t)] / total;
+  }
+  ++recuts_;
+  const Decomposition next = decompose_state(global, threads(), 1, &cost);
+  if (next.starts != decomposition_.starts) cut_again(global, next);
+}
+
+void ThreadParts::cut_again(SolverState& global, const Decomposition& next) {
+  if (next.ranks() != threads()) throw std::invalid_argument("cut_again: another thread count");
+  bring_back(global);
+  decomposition_ = next;
+  build(global);
 }
 
 ThreadParts::~ThreadParts() = default;
@@ -71,7 +112,7 @@ bool ThreadParts::advance(SolverState& global, std::int64_t steps, bool take_sli
       StateSlice::read(part.local, part.layout.owned, slice, at);
       part.local.step = global.step;
     }
-    advance_rank_part(part, mine.ranks, dt_, steps);
+    advance_rank_part(part, mine.ranks, spec_.dt, steps);
   });
   if (!whole) return false;
   if (take_slices) {
@@ -89,6 +130,7 @@ bool ThreadParts::advance(SolverState& global, std::int64_t steps, bool take_sli
   add(Phase::contact, after.contact_seconds - before.contact_seconds);
   add(Phase::strain, after.strain_seconds - before.strain_seconds);
   add(Phase::forces, after.forces_seconds - before.forces_seconds);
+  rebalance(global);
   return true;
 }
 
@@ -149,6 +191,7 @@ ThreadCrossing ThreadParts::crossing() const {
     }
     RankTimes times = part.times;
     times.halo_seconds = part.halo_cost.seconds;
+    times.halo_wait_seconds = mine->ranks.waited_seconds();
     times.halo_bytes_sent = part.halo_cost.bytes_sent;
     times.owned = static_cast<double>(part.layout.owned.size());
     times.ghosts = static_cast<double>(part.layout.size() - part.layout.owned.size());

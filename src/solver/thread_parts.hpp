@@ -14,6 +14,14 @@
 // The whole state stays the home of the particles between batches: the
 // parts take their slices of it before a batch when it changed, and give
 // them back when it is read.
+//
+// The first cut balances bond entries plus particles. The threads then
+// measure their passes, and while the slowest is more than kImbalance
+// slower than the fastest, the state is cut again (at most kRecuts times)
+// by what each thread measured, spread over its particles by the same
+// count: walls that only strain, a rigid body's projection or a body's
+// irregular rows cost what they cost on this machine. Any cut gives the
+// same bits.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -37,14 +45,26 @@ class ThreadParts {
   ThreadParts(const ThreadParts&) = delete;
   ThreadParts& operator=(const ThreadParts&) = delete;
 
-  int threads() const { return boxes_.size(); }
+  int threads() const { return static_cast<int>(parts_.size()); }
+  // The cut the parts step now, and how often the state was cut again.
+  const Decomposition& decomposition() const { return decomposition_; }
+  int recuts() const { return recuts_; }
+
+  static constexpr double kImbalance = 1.05;
+  static constexpr int kRecuts = 3;
+  // Pass time every thread must have measured before a cut is judged.
+  static constexpr double kMeasureSeconds = 0.02;
   // Steps `steps` steps, each thread its part; with `take_slices`, the parts
   // take their slices of `global` first. `global.step` follows. False, with
   // nothing done, when OpenMP gave a team of another size.
   bool advance(SolverState& global, std::int64_t steps, bool take_slices, PhaseTimers& timers);
   // Gives every part's slice back to `global` (with contact's counters).
   void bring_back(SolverState& global);
-  // What crossed between the threads per step, and each thread's part and times.
+  // Cuts `global` again by `next` (same thread count): the parts' particles
+  // brought back into it first, then each thread builds its new part.
+  void cut_again(SolverState& global, const Decomposition& next);
+  // What crossed between the threads per step, and each thread's part and
+  // times, since the last cut.
   ThreadCrossing crossing() const;
 
  private:
@@ -52,12 +72,19 @@ class ThreadParts {
   // each; false (nothing run) when the team has another size.
   template <class F>
   bool on_each_thread(F&& f);
+  // Each thread builds its part of `global` by decomposition_ (new
+  // mailboxes: every call count starts again).
+  void build(const SolverState& global);
+  // Cuts `global` again by the threads' measured pass times when they
+  // differ by more than kImbalance (the parts' particles brought back first).
+  void rebalance(SolverState& global);
 
+  CaseSpec spec_;
   Decomposition decomposition_;
-  ThreadMailboxes boxes_;
+  std::unique_ptr<ThreadMailboxes> boxes_;
   std::vector<std::unique_ptr<ThreadPart>> parts_;
-  double dt_;
-  std::int64_t steps_ = 0;
+  int recuts_ = 0;
+  std::int64_t steps_ = 0;  // stepped by the parts of the current cut
   double slice_moves_ = 0, slice_bytes_ = 0;
 };
 
