@@ -87,21 +87,21 @@ void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
                      const std::vector<double>& per_entry, double* out);
 
 // The dense part of the owner pass over the bonds owned by particles in
-// `owners`, except the bonds between two particles below `fixed_end` (walls:
-// stored first, never moving) and those whose partner is below
-// `partners_from` (on a rank's part, bonds between two ghosts: never read):
-// for each direction, dense(count, slot, i, j) for `count` consecutive
-// owners from i (partners from j = i + o, slots from `slot`).
+// `owners` whose partner is in `partners`, except the bonds between two
+// particles below `fixed_end` (walls: stored first, never moving): for each
+// direction, dense(count, slot, i, j) for `count` consecutive owners from i
+// (partners from j = i + o, slots from `slot`).
 template <class Dense>
 void for_each_dense_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
-                         std::size_t partners_from = 0) {
+                         Range partners = {0, static_cast<std::size_t>(-1)}) {
   const std::size_t n = s.particles;
   for (std::size_t d = 0; d < s.directions.size(); ++d) {
     const std::size_t o = s.directions[d];
     // Owners below fixed_end - o have their partner below fixed_end too.
-    const std::size_t lowest = std::max(fixed_end, partners_from);
+    const std::size_t lowest = std::max(fixed_end, partners.begin);
+    const std::size_t highest = std::min(n, partners.end);
     const std::size_t begin = std::max(owners.begin, lowest > o ? lowest - o : 0);
-    const std::size_t end = std::min(owners.end, n > o ? n - o : 0);
+    const std::size_t end = std::min(owners.end, highest > o ? highest - o : 0);
     if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
   }
 }

@@ -152,17 +152,19 @@ class CorrectedGradientModel {
     strain_pass(p, bonds, range, none);
   }
 
-  // What the step's halos carry over MPI ranks (src/solver/step.hpp; on one
-  // rank `halo` does nothing): before pass 1, a partner's position; after
+  // What the step's halos carry between ranks or threads (src/solver/step.hpp;
+  // on one thread `halo` does nothing): before pass 1, a partner's position
+  // (posted by share_motion, received as pass 1 starts); after
   // it, its F (a bond's gap reads both ends'); after pass 1b, its
   // (S + Q) A^-1, which the force pass reads. A ghost's A^-1 is never read.
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
-    halo("motion", {field_of(p.x), field_of(p.y)});
+    halo.post("motion", {field_of(p.x), field_of(p.y)});
   }
   // Pass 1 (F, J, S A^-1) and, with the consistent hourglass, pass 1b (Q).
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
+    halo.finish();
     compute_deformation_gradient(p, bonds, range);
     halo("deformation gradient", {deformation_gradient_field()});
     compute_hourglass_stress(p, bonds, range);

@@ -120,23 +120,36 @@ class PaperModelT {
 
   // What the step's halos carry between ranks or threads
   // (src/solver/step.hpp; on one thread `halo` does nothing): before pass 1,
-  // what the slots read of a partner's motion (position and half angles);
-  // after it, the pressure the force pass reads (a partner's strain is
-  // never read).
+  // what the slots read of a partner's motion (position and half angles:
+  // posted here, received once the slots between two particles of the range
+  // are done); after it, the pressure the force pass reads (a partner's
+  // strain is never read).
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
-    halo("motion", {field_of(p.x), field_of(p.y), field_of(p.half_cos), field_of(p.half_sin)});
+    halo.post("motion", {field_of(p.x), field_of(p.y), field_of(p.half_cos), field_of(p.half_sin)});
   }
   // Pass 1: each bond's kinematics once (its owner's thread), then each
   // particle's strain and pressure from its bonds' slots. The slots computed
-  // are those the particles of `range` read: the bonds owned in it, and
-  // those owned below it (a part's ghosts) by a dense direction reaching
-  // into it. (Bonds owned above `range` join two ghosts.)
+  // are those the particles of `range` read: first the bonds between two of
+  // them, which read no ghost (on a part, while the motion halo travels),
+  // then those with one end outside (on a part, a ghost): owned below
+  // `range` and reaching into it, or owned in it and reaching above. Bonds
+  // between two ghosts are never read.
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
-    parallel_blocks(0, range.end, [&](std::size_t b, std::size_t e) {
-      compute_bond_slots(p, {b, e}, range.begin);
+    const std::size_t n = p.size();
+    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+      compute_bond_slots(p, {b, e}, range);
     });
+    halo.finish();
+    if (range.begin > 0)
+      parallel_blocks(0, range.begin, [&](std::size_t b, std::size_t e) {
+        compute_bond_slots(p, {b, e}, {range.begin, n});
+      });
+    if (range.end < n)
+      parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+        compute_bond_slots(p, {b, e}, {range.end, n});
+      });
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_strain(p, bonds, {b, e});
     });
@@ -257,14 +270,17 @@ class PaperModelT {
   // a time, with the same arithmetic. Bonds between two walls are skipped:
   // walls never move or turn (half angles exactly 1 and 0), so their slots
   // keep what the constructor put there, the bits this pass would compute.
-  // Dense slots whose partner is below `partners_from` are skipped too.
-  void compute_bond_slots(const ParticleStore& p, Range owners, std::size_t partners_from) {
+  // Only bonds whose partner is in `partners` are computed.
+  void compute_bond_slots(const ParticleStore& p, Range owners, Range partners) {
     const auto [first, last] = owned_extras(slots_, owners);
     const std::size_t fixed_end = p.walls.end;
+    const auto wanted = [&](std::size_t j) {
+      return j >= fixed_end && j >= partners.begin && j < partners.end;
+    };
     const auto extra = [&](std::size_t k) {
       const std::size_t i = slots_.extra_owner[k], j = slots_.extra_partner[k];
       const std::size_t s = slots_.dense_slots + k;
-      if (j >= fixed_end)
+      if (wanted(j))
         store_kinematics(s,
                          kinematics(p.x[i], p.y[i], p.half_cos[i], p.half_sin[i], p.x[j], p.y[j],
                                     p.half_cos[j], p.half_sin[j], slot_[kR0x][s], slot_[kR0y][s]));
@@ -279,7 +295,7 @@ class PaperModelT {
     for (; k + kLanes <= last; k += kLanes) {
       const std::uint32_t* owner = &slots_.extra_owner[k];
       const std::uint32_t* partner = &slots_.extra_partner[k];
-      if (*std::min_element(partner, partner + kLanes) < fixed_end) {
+      if (!std::all_of(partner, partner + kLanes, wanted)) {
         for (std::size_t l = k; l < k + kLanes; ++l) extra(l);
         continue;
       }
@@ -301,7 +317,7 @@ class PaperModelT {
                           &slot_[kStrainTerm][slot],
                           EnergyConsistent ? &slot_[kExtension][slot] : nullptr);
         },
-        partners_from);
+        partners);
   }
 
   // One bond's kinematics seen from its owner i: r_ij, u_ij, 1 / |r_ij| and

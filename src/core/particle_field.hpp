@@ -27,9 +27,13 @@ inline ParticleField field_of(std::vector<double>& values) {
 }
 
 // A halo that carries nothing: the step on one rank, where every partner
-// is this process's own.
+// is this process's own. Every halo is called as halo(name, fields), or in
+// two halves, post(name, fields) then finish(), so that work that needs no
+// ghost runs while the values travel.
 struct NoHalo {
   void operator()(const char*, std::initializer_list<ParticleField>) const {}
+  void post(const char*, std::initializer_list<ParticleField>) const {}
+  void finish() const {}
 };
 
 }  // namespace mpsolid

@@ -32,11 +32,11 @@ void HaloTally::received(std::size_t message_bytes) {
   lines += static_cast<double>((message_bytes + 63) / 64);
 }
 
+namespace {
 // A message is field by field (component by component), each over the
 // listed particles in order: unit-stride writes, one strided read stream.
-void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
-                   std::initializer_list<ParticleField> fields, HaloCost& cost) {
-  CommunicationTime t(cost);
+template <class Fields>
+void pack(LocalHalo& halo, const Fields& fields, HaloCost& cost) {
   std::size_t width = 0;
   for (const ParticleField& f : fields) width += f.width;
   const std::size_t n = halo.peers.size();
@@ -55,10 +55,11 @@ void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
     halo.in[k].resize(width * halo.receive[k].size());
     cost.bytes_sent += 8.0 * static_cast<double>(message.size());
   }
-  world.exchange(halo.peers, halo.out, halo.in);
-  HaloTally& tally = cost.tally(name);
-  for (std::size_t k = 0; k < n; ++k) {
-    tally.received(8 * halo.in[k].size());
+}
+
+template <class Fields>
+void unpack(const LocalHalo& halo, const Fields& fields) {
+  for (std::size_t k = 0; k < halo.peers.size(); ++k) {
     const double* in = halo.in[k].data();
     for (const ParticleField& f : fields)
       for (std::size_t c = 0; c < f.width; ++c) {
@@ -66,6 +67,42 @@ void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
         for (const std::uint32_t i : halo.receive[k]) to[i * f.particle_stride] = *in++;
       }
   }
+}
+
+void tally_received(const LocalHalo& halo, const char* name, HaloCost& cost) {
+  HaloTally& tally = cost.tally(name);
+  for (const std::vector<double>& message : halo.in) tally.received(8 * message.size());
+}
+}  // namespace
+
+void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
+                   std::initializer_list<ParticleField> fields, HaloCost& cost) {
+  CommunicationTime t(cost);
+  pack(halo, fields, cost);
+  world.exchange(halo.peers, halo.out, halo.in);
+  tally_received(halo, name, cost);
+  unpack(halo, fields);
+}
+
+void post_halo(const RankGroup& world, LocalHalo& halo, const char* name,
+               std::initializer_list<ParticleField> fields, HaloCost& cost) {
+  if (!world.posts()) {
+    exchange_halo(world, halo, name, fields, cost);
+    return;
+  }
+  CommunicationTime t(cost);
+  pack(halo, fields, cost);
+  world.post(halo.peers, halo.out);
+  tally_received(halo, name, cost);  // the sizes are the plan's
+  halo.posted.assign(fields.begin(), fields.end());
+}
+
+void finish_halo(const RankGroup& world, LocalHalo& halo, HaloCost& cost) {
+  if (halo.posted.empty()) return;
+  CommunicationTime t(cost);
+  world.collect(halo.peers, halo.in);
+  unpack(halo, halo.posted);
+  halo.posted.clear();
 }
 
 }  // namespace mpsolid

@@ -19,6 +19,7 @@ struct LocalHalo {
   std::vector<int> peers;
   std::vector<std::vector<std::uint32_t>> send, receive;  // local indices, per peer
   std::vector<std::vector<double>> out, in;               // the messages, reused
+  std::vector<ParticleField> posted;                      // a posted exchange's fields
 };
 // The halo plan (global indices) in the layout's local indices.
 LocalHalo local_halo(const HaloPlan& plan, const LocalLayout& layout);
@@ -68,5 +69,12 @@ class CommunicationTime {
 // `name`. Collective over the halo's peers.
 void exchange_halo(const RankGroup& world, LocalHalo& halo, const char* name,
                    std::initializer_list<ParticleField> fields, HaloCost& cost);
+// The same in two halves where the ranks can split it (RankGroup::posts):
+// post_halo sends the owned values (the whole exchange where they cannot);
+// finish_halo gives the ghosts theirs (nothing when none is posted). The
+// owned values of the fields must not change between the two.
+void post_halo(const RankGroup& world, LocalHalo& halo, const char* name,
+               std::initializer_list<ParticleField> fields, HaloCost& cost);
+void finish_halo(const RankGroup& world, LocalHalo& halo, HaloCost& cost);
 
 }  // namespace mpsolid

@@ -7,6 +7,7 @@
 // over the ranks involved and returns the same data at any timing, so
 // results never depend on message order.
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace mpsolid {
@@ -28,6 +29,18 @@ class RankGroup {
                         std::vector<std::vector<double>>& in) const = 0;
   // The largest of every rank's value, on every rank.
   virtual std::int64_t max(std::int64_t mine) const = 0;
+
+  // Whether an exchange can be split in two (post, then collect), so that
+  // the caller works while its messages travel. Between them no other call.
+  virtual bool posts() const { return false; }
+  // The first half of exchange(peers, out, in): sends.
+  virtual void post(const std::vector<int>&, const std::vector<std::vector<double>>&) const {
+    throw std::logic_error("post: these ranks exchange in one call");
+  }
+  // The second half: receives into in[k] (sized as for exchange).
+  virtual void collect(const std::vector<int>&, std::vector<std::vector<double>>&) const {
+    throw std::logic_error("collect: these ranks exchange in one call");
+  }
 };
 
 }  // namespace mpsolid

@@ -61,13 +61,20 @@ ThreadMailboxes::Mailbox& ThreadRanks::mine() const {
   return boxes_.boxes_[static_cast<std::size_t>(rank_)];
 }
 
-std::size_t ThreadRanks::publish_and_wait() const {
-  const std::size_t call = calls_;
-  mine().calls.store(call, std::memory_order_release);
+void ThreadRanks::publish() const {
+  mine().calls.store(calls_, std::memory_order_release);
+}
+
+std::size_t ThreadRanks::wait_for_all() const {
   for (int r = 0; r < size(); ++r)
     if (r != rank_)
-      waited_ += wait_until_reaches(boxes_.boxes_[static_cast<std::size_t>(r)].calls, call);
-  return call & 1;
+      waited_ += wait_until_reaches(boxes_.boxes_[static_cast<std::size_t>(r)].calls, calls_);
+  return calls_ & 1;
+}
+
+std::size_t ThreadRanks::publish_and_wait() const {
+  publish();
+  return wait_for_all();
 }
 
 std::vector<double> ThreadRanks::all_gather(const std::vector<double>& mine_values) const {
@@ -85,14 +92,27 @@ std::vector<double> ThreadRanks::all_gather(const std::vector<double>& mine_valu
 void ThreadRanks::exchange(const std::vector<int>& peers,
                            const std::vector<std::vector<double>>& out,
                            std::vector<std::vector<double>>& in) const {
-  if (peers.size() != out.size() || peers.size() != in.size())
+  post(peers, out);
+  collect(peers, in);
+}
+
+void ThreadRanks::post(const std::vector<int>& peers,
+                       const std::vector<std::vector<double>>& out) const {
+  if (peers.size() != out.size())
     throw std::invalid_argument("exchange: one message each way per peer");
   const std::size_t parity = ++calls_ & 1;
   std::vector<Letter>& to = mine().letters[parity].to;
   if (to.size() != static_cast<std::size_t>(size())) to.resize(static_cast<std::size_t>(size()));
   for (std::size_t k = 0; k < peers.size(); ++k)
     write_letter(to[static_cast<std::size_t>(peers[k])], out[k]);
-  publish_and_wait();
+  publish();
+}
+
+void ThreadRanks::collect(const std::vector<int>& peers,
+                          std::vector<std::vector<double>>& in) const {
+  if (peers.size() != in.size())
+    throw std::invalid_argument("exchange: one message each way per peer");
+  const std::size_t parity = wait_for_all();
   for (std::size_t k = 0; k < peers.size(); ++k) {
     const Letter& letter = boxes_.boxes_[static_cast<std::size_t>(peers[k])].letters[parity].to.at(
         static_cast<std::size_t>(rank_));

@@ -50,15 +50,21 @@ class ThreadRanks final : public RankGroup {
   void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
                 std::vector<std::vector<double>>& in) const override;
   std::int64_t max(std::int64_t mine) const override;
+  bool posts() const override { return true; }
+  void post(const std::vector<int>& peers,
+            const std::vector<std::vector<double>>& out) const override;
+  void collect(const std::vector<int>& peers, std::vector<std::vector<double>>& in) const override;
   // Seconds this thread has waited for the others' letters, all calls.
   double waited_seconds() const { return waited_; }
 
  private:
   // This thread's letters for the next call (the call's parity's set).
   ThreadMailboxes::Mailbox& mine() const;
-  // Publishes this thread's letters of the call and waits for every other
-  // thread's; returns the call's parity.
+  // Publishes this thread's letters of the call, then waits for every
+  // other thread's; returns the call's parity.
   std::size_t publish_and_wait() const;
+  void publish() const;
+  std::size_t wait_for_all() const;
 
   ThreadMailboxes& boxes_;
   int rank_;

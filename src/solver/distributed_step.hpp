@@ -81,6 +81,10 @@ class OverRanks {
     void operator()(const char* name, std::initializer_list<ParticleField> fields) {
       exchange_halo(world, part.halo, name, fields, part.halo_cost);
     }
+    void post(const char* name, std::initializer_list<ParticleField> fields) {
+      post_halo(world, part.halo, name, fields, part.halo_cost);
+    }
+    void finish() { finish_halo(world, part.halo, part.halo_cost); }
   };
   Halo& halo() { return halo_; }
   void contact_pass(SolverState& s, std::int64_t step) {

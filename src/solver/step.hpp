@@ -145,6 +145,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
   Model::share_motion(p, place.halo());
   if (s.contact.enabled()) {
     auto t = place.time(Phase::contact);
+    place.halo().finish();  // contact reads the ghosts' positions
     place.contact_pass(s, step);
   }
   {
