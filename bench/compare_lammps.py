@@ -115,15 +115,20 @@ def fixed_threads_flag(exe):
     return ["--fixed-threads"] if "--fixed-threads" in run([exe, "run", "--help"]).stdout else []
 
 
-def run_mpsolid(exe, folder, l0, steps, threads, model, fixed):
+def mpsolid_command(exe, folder, l0, steps, threads, model, fixed):
+    """The run of `steps` steps of the case at l0 with `model` (no frames
+    between, checkpoints only at the ends)."""
     end = steps * DT
-    shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
-    run([exe, "run", CASE, "--out", folder, "--threads", threads, *fixed,
-         "--set", f"l0={l0!r}",
-         "--set", f"model={model}",
-         "--set", f"time.end={end!r}",
-         # One frame at the start and one at the end, checkpoints only at the ends.
-         "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"])
+    return [exe, "run", CASE, "--out", folder, "--threads", threads, *fixed,
+            "--set", f"l0={l0!r}",
+            "--set", f"model={model}",
+            "--set", f"time.end={end!r}",
+            "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"]
+
+
+def mpsolid_result(folder, steps):
+    """What a finished run's run.json says: its time-loop seconds (wall less
+    set-up, output and checkpoints), steps, particles, bonds and commit."""
     rep = run_data.read_info(folder)
     if rep["outcome"] != "completed" or rep["steps"] != steps or rep["dt"] != DT:
         fail(f"{folder / 'run.json'}: outcome {rep['outcome']}, {rep['steps']} steps, "
@@ -135,6 +140,12 @@ def run_mpsolid(exe, folder, l0, steps, threads, model, fixed):
     seconds = rep["wall_seconds"] - ph["setup"] - ph["output"] - ph["checkpoint"]
     return {"seconds": seconds, "steps": steps, "particles": rep["particles"],
             "bonds": rep["bonds"], "git_commit": rep["git_commit"]}
+
+
+def run_mpsolid(exe, folder, l0, steps, threads, model, fixed, launcher=()):
+    shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
+    run([*launcher, *mpsolid_command(exe, folder, l0, steps, threads, model, fixed)])
+    return mpsolid_result(folder, steps)
 
 
 def summary(values):

@@ -12,12 +12,16 @@ namespace mpsolid {
 // model, 0.28 to 1.13 M particles, bench/memory_rod.py; its bond slots hold
 // 12 arrays of about 6.4 slots per particle), with some room.
 inline constexpr double kBytesPerParticle = 1650;
+// With several threads, each thread's part besides the whole state: its
+// particles and ghosts, their bonds and its model (src/solver/thread_parts.hpp);
+// measured 1,315 B marginal at 2 threads (bench/memory_rod.py --threads 2).
+inline constexpr double kPartBytesPerParticle = 1500;
 
 // MemAvailable of /proc/meminfo in bytes, or 0 when it cannot be read.
 std::uint64_t available_memory_bytes();
 
-// Throws InputError when the case's estimate exceeds `available` bytes (a 0
-// `available` skips the check).
-void check_memory(const CaseSpec& spec, std::uint64_t available);
+// Throws InputError when the case's estimate at `threads` threads exceeds
+// `available` bytes (a 0 `available` skips the check).
+void check_memory(const CaseSpec& spec, int threads, std::uint64_t available);
 
 }  // namespace mpsolid

@@ -337,7 +337,7 @@ void refuse_earlier_results(const RunOptions& options) {
 
 int run_case(const CaseSpec& spec, const RunOptions& options) {
   RunFacts facts = begin_segment(options, 0);
-  check_memory(spec, available_memory_bytes());
+  check_memory(spec, facts.threads, available_memory_bytes());
   // An existing folder is locked and checked before the set-up (seconds to
   // minutes on a large case); a new one once it is made.
   std::optional<FolderLock> lock;
@@ -383,7 +383,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
         path.string(), at, checkpoint.step));
 
   RunFacts facts = begin_segment(options, checkpoint.step);
-  check_memory(spec, available_memory_bytes());
+  check_memory(spec, facts.threads, available_memory_bytes());
   Simulation sim(spec, options.followers);
   restore_state(sim.state_to_change(), checkpoint, path.string());
   return with_failed_writes_explained(options.out_dir, [&] {
