@@ -43,6 +43,7 @@ ThreadParts::ThreadParts(const CaseSpec& spec, const SolverState& global, int th
 }
 
 void ThreadParts::build(const SolverState& global) {
+  const auto start = std::chrono::steady_clock::now();
   boxes_ = std::make_unique<ThreadMailboxes>(threads());
   steps_ = 0;
   // Building a part does no rendezvous, so a thread that fails leaves no
@@ -60,6 +61,7 @@ void ThreadParts::build(const SolverState& global) {
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
   if (!whole) throw std::runtime_error("ThreadParts: OpenMP gave a team of another size");
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void ThreadParts::rebalance(SolverState& global) {
@@ -70,7 +72,7 @@ void ThreadParts::rebalance(SolverState& global) {
     busy.push_back(t.strain_seconds + t.forces_seconds + t.contact_seconds);
   }
   const auto [least, most] = std::minmax_element(busy.begin(), busy.end());
-  if (*least < kMeasureSeconds) return;
+  if (*least < std::max(kMeasureSeconds, kRecutPayback * build_seconds_)) return;
   if (*most <= kImbalance * *least) {
     recuts_ = kRecuts;  // balanced: measured no more
     return;

@@ -52,8 +52,11 @@ class ThreadParts {
 
   static constexpr double kImbalance = 1.05;
   static constexpr int kRecuts = 3;
-  // Pass time every thread must have measured before a cut is judged.
+  // Pass time every thread must have measured before a cut is judged: at
+  // least this, and kRecutPayback times what building the parts took (so
+  // that cutting again costs a short run little).
   static constexpr double kMeasureSeconds = 0.02;
+  static constexpr double kRecutPayback = 20;
   // Steps `steps` steps, each thread its part; with `take_slices`, the parts
   // take their slices of `global` first. `global.step` follows. False, with
   // nothing done, when OpenMP gave a team of another size.
@@ -84,7 +87,8 @@ class ThreadParts {
   std::unique_ptr<ThreadMailboxes> boxes_;
   std::vector<std::unique_ptr<ThreadPart>> parts_;
   int recuts_ = 0;
-  std::int64_t steps_ = 0;  // stepped by the parts of the current cut
+  double build_seconds_ = 0;  // the last build's wall time
+  std::int64_t steps_ = 0;    // stepped by the parts of the current cut
   double slice_moves_ = 0, slice_bytes_ = 0;
 };
 
