@@ -118,15 +118,18 @@ inline std::pair<std::size_t, std::size_t> owned_extras(const BondSlots& s, Rang
 }
 
 // The whole owner pass: for_each_dense_slot, then extra(slot, i, j) for each
-// extra bond owned there (but those between two particles below fixed_end).
+// extra bond owned there (but those between two particles below fixed_end),
+// both for partners in `partners`.
 template <class Dense, class Extra>
 void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
-                         Extra&& extra) {
-  for_each_dense_slot(s, owners, fixed_end, dense);
+                         Extra&& extra, Range partners = {0, static_cast<std::size_t>(-1)}) {
+  for_each_dense_slot(s, owners, fixed_end, dense, partners);
   const auto [first, last] = owned_extras(s, owners);
-  for (std::size_t k = first; k < last; ++k)
-    if (s.extra_partner[k] >= fixed_end)
-      extra(s.dense_slots + k, s.extra_owner[k], s.extra_partner[k]);
+  for (std::size_t k = first; k < last; ++k) {
+    const std::size_t j = s.extra_partner[k];
+    if (j >= fixed_end && j >= partners.begin && j < partners.end)
+      extra(s.dense_slots + k, s.extra_owner[k], j);
+  }
 }
 
 // The pieces of `block` by path: regular(begin, end, pattern) for the parts

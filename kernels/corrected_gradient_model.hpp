@@ -179,9 +179,11 @@ class CorrectedGradientModel {
     });
   }
   void compute_hourglass_stress(const ParticleStore& p, const BondTable& bonds, Range range) {
-    // Every bond's gap and Q terms (all owners, whatever `range` is).
-    parallel_blocks(0, p.size(), [&](std::size_t b, std::size_t e) {
-      compute_gap_slots(p, {b, e});
+    // The gaps the particles of `range` read: of the bonds owned below its
+    // end whose partner is in it or above (bonds between two of a part's
+    // ghosts are never read).
+    parallel_blocks(0, range.end, [&](std::size_t b, std::size_t e) {
+      compute_gap_slots(p, {b, e}, {range.begin, p.size()});
     });
     if (consistent_hourglass_)
       parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
@@ -374,15 +376,16 @@ class CorrectedGradientModel {
 
   // Each owned bond's hourglass gap g_ij = r_ij - (F_i + F_j) r0_ij / 2, as
   // its owner sees it (the other end's is -g bit for bit).
-  void compute_gap_slots(const ParticleStore& p, Range owners) {
+  void compute_gap_slots(const ParticleStore& p, Range owners, Range partners) {
     const auto at = [&](Field f, std::size_t s) { return slot_[f] + s; };
     const auto gaps = [&](std::size_t count, std::size_t s, std::size_t i, std::size_t j) {
       gap_terms(count, &p.x[i], &p.y[i], &p.x[j], &p.y[j], &def_grad_[4 * i], &def_grad_[4 * j],
                 at(kR0x, s), at(kR0y, s), at(kGapX, s), at(kGapY, s));
     };
-    for_each_owned_slot(slots_, owners, 0,
-                        gaps,  // walls' own bonds too: their Q enters their neighbours' force
-                        [&](std::size_t s, std::size_t i, std::size_t j) { gaps(1, s, i, j); });
+    for_each_owned_slot(
+        slots_, owners, 0,
+        gaps,  // walls' own bonds too: their Q enters their neighbours' force
+        [&](std::size_t s, std::size_t i, std::size_t j) { gaps(1, s, i, j); }, partners);
   }
 
   // Pass 1b: Q_i = sum over its bonds of (-1/2 h_ij) g_ij (x) r0_ij in CSR
