@@ -1,5 +1,7 @@
 #pragma once
-// The step on one rank of several (docs/mpi.md), for every model: the rank
+// The step on one rank of several (an MPI rank, docs/mpi.md, or a thread of
+// one process stepping its own part, src/solver/thread_parts.hpp), for every
+// model: the rank
 // runs the one step order (src/solver/step.hpp) on its local state, over its
 // owned particles, and before each pass that reads neighbours its ghosts get
 // their owners' values through the halos the model names (share_motion,

@@ -7,20 +7,20 @@
 // Where it runs is a `Place`: OneRank (the whole state on this process; every
 // halo does nothing) or OverRanks (a rank's local state, src/solver/
 // distributed_step.hpp: its owned particles, its ghosts' halos and contact
-// over the ranks). Each model says what the halos carry before and after the
-// stages of its strain pass (share_motion, strain_pass), so the step names no
-// model.
+// over the ranks: an MPI rank, or on one process each thread of the team,
+// src/solver/thread_parts.hpp). Each model says what the halos carry before
+// and after the stages of its strain pass (share_motion, strain_pass), so the
+// step names no model.
 //
-// On one rank a batch of steps runs in one parallel region (run_in_team):
+// At OneRank a batch of steps runs in one parallel region (run_in_team):
 // each phase is a loop over chunks of per-thread particle blocks that ends
 // with a barrier (src/core/parallel.hpp), and the serial bookkeeping (a load
-// switching on) is done by one thread. Over ranks the calling thread runs the
-// step and each loop forks and joins its threads (the halos are the calling
-// thread's). Loads, kick, drift and the new half angles of a particle follow
-// its force in the same chunk, with no barrier between; a rigid body is
-// projected by the thread that kicks its last particles. Every particle's
-// arithmetic is the same at any thread and rank count, chunking and batch
-// size: the same bits.
+// switching on) is done by one thread. Over MPI ranks the calling thread
+// runs the step and each loop forks and joins its threads (the halos are the
+// calling thread's); a thread stepping its own part runs every loop alone. Loads, kick, drift and
+// the new half angles of a particle follow its force in the same chunk, with no barrier between; a
+// rigid body is projected by the thread that kicks its last particles. Every particle's arithmetic
+// is the same at any thread and rank count, chunking and batch size: the same bits.
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
