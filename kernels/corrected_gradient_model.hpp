@@ -166,8 +166,13 @@ class CorrectedGradientModel {
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
     halo.finish();
     compute_deformation_gradient(p, bonds, range);
-    halo("deformation gradient", {deformation_gradient_field()});
-    compute_hourglass_stress(p, bonds, range);
+    // The gaps between two particles of `range` read no ghost's F: on a part
+    // they are computed while the F halo travels.
+    halo.post("deformation gradient", {deformation_gradient_field()});
+    compute_gaps(p, range, range);
+    halo.finish();
+    compute_gaps_with_ghosts(p, range);
+    gather_hourglass(bonds, range);
     halo("stress", {stress_field()});
   }
 
@@ -178,13 +183,28 @@ class CorrectedGradientModel {
       gather_deformation_gradient(p, bonds, {b, e});
     });
   }
+  // The gaps the particles of `range` read (bonds between two of a part's
+  // ghosts are never read), then pass 1b.
   void compute_hourglass_stress(const ParticleStore& p, const BondTable& bonds, Range range) {
-    // The gaps the particles of `range` read: of the bonds owned below its
-    // end whose partner is in it or above (bonds between two of a part's
-    // ghosts are never read).
-    parallel_blocks(0, range.end, [&](std::size_t b, std::size_t e) {
-      compute_gap_slots(p, {b, e}, {range.begin, p.size()});
+    compute_gaps(p, range, range);
+    compute_gaps_with_ghosts(p, range);
+    gather_hourglass(bonds, range);
+  }
+
+  // The gaps of the bonds owned in `owners` whose partner is in `partners`.
+  void compute_gaps(const ParticleStore& p, Range owners, Range partners) {
+    parallel_blocks(owners.begin, owners.end, [&](std::size_t b, std::size_t e) {
+      compute_gap_slots(p, {b, e}, partners);
     });
+  }
+  // The gaps with one end outside `range` that its particles read: owned
+  // below it and reaching into it, or owned in it and reaching above.
+  void compute_gaps_with_ghosts(const ParticleStore& p, Range range) {
+    const std::size_t n = p.size();
+    if (range.begin > 0) compute_gaps(p, {0, range.begin}, {range.begin, n});
+    if (range.end < n) compute_gaps(p, range, {range.end, n});
+  }
+  void gather_hourglass(const BondTable& bonds, Range range) {
     if (consistent_hourglass_)
       parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
         gather_hourglass_stress(bonds, {b, e});
