@@ -8,8 +8,9 @@ src/solver/step.hpp), for the paper model on the shock_rod lattice.
 The lattice, storage order and bonds are rebuilt here from
 cases/shock_rod.toml: sites at (k + 1/2) l0, bodies stored walls, elastic,
 rigid, each row by row (x fastest), a bond for every pair closer than
-re = 2.1 l0. Slots follow kernels/bond_slots.cpp: a direction per offset
-used by at least n / 8 bonds, slot d * n + i, then the extra slots by owner.
+re = 2.1 l0 (the lattice and bonds of bench/lammps/make_input.py). Slots
+follow kernels/bond_slots.cpp: a direction per offset used by at least
+n / 8 bonds, slot d * n + i, then the extra slots by owner.
 
 A step is three team loops, each over one static block per thread:
   slots    bond kinematics by owner over [0, n)
@@ -29,13 +30,16 @@ chunk counters are reported apart, as an estimate.
 import argparse
 import json
 import pathlib
+import sys
 import tomllib
 
 import numpy as np
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "lammps"))
+from make_input import bond_offsets, lattice_span  # noqa: E402  (the same lattice and bonds)
+
 REPO = pathlib.Path(__file__).resolve().parents[1]
 CASE = REPO / "cases" / "shock_rod.toml"
-RE_OVER_L0 = 2.1
 LINE_DOUBLES = 8  # 64-byte lines
 GROUP = {"wall": 0, "elastic": 1, "rigid": 2}
 PARTICLE_ARRAYS = ["x", "y", "vx", "vy", "theta", "omega", "half_cos", "half_sin", "strain",
@@ -46,9 +50,9 @@ PASSES = ["slots", "strain", "forces"]
 
 
 def span(lo, hi, l0):
-    """Lattice indices k with (k + 1/2) l0 in [lo, hi) (src/core/geometry.cpp)."""
-    slack = 1e-9
-    return int(np.ceil(lo / l0 - 0.5 - slack)), int(np.ceil(hi / l0 - 0.5 - slack))
+    """Lattice indices [first, end) with (k + 1/2) l0 in [lo, hi)."""
+    first, last = lattice_span(lo, hi, l0)
+    return first, last + 1
 
 
 def lattice(l0):
@@ -73,11 +77,8 @@ def bonds(sites):
     lo = sites.min(axis=0) - 2
     grid = -np.ones(tuple(sites.max(axis=0) - lo + 3), dtype=np.int64)
     grid[tuple((sites - lo).T)] = np.arange(len(sites))
-    reach = int(RE_OVER_L0)
-    offsets = [(dk, dm) for dk in range(-reach, reach + 1) for dm in range(-reach, reach + 1)
-               if 0 < dk * dk + dm * dm < RE_OVER_L0 ** 2]
     i_all, j_all = [], []
-    for dk, dm in offsets:
+    for dk, dm in bond_offsets():
         j = grid[sites[:, 0] - lo[0] + dk, sites[:, 1] - lo[1] + dm]
         i_all.append(np.flatnonzero(j >= 0))
         j_all.append(j[j >= 0])

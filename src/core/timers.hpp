@@ -88,8 +88,9 @@ struct ThreadCrossing {
   int threads = 0;
   double steps = 0;  // steps the parts took
   std::vector<HaloCrossing> per_step;
-  double counter_lines_per_step = 0;
   double calls_per_step = 0;  // the rendezvous of the team per step
+  // Each rendezvous, each thread reads every other's counter line.
+  double counter_lines_per_step() const { return calls_per_step * threads * (threads - 1); }
   std::vector<RankTimes> per_thread;
 };
 

@@ -82,7 +82,7 @@ Json thread_facts_json(const RunFacts& facts) {
   const ThreadCrossing& c = facts.thread_crossing;
   if (c.threads > 0) {
     Json halos = Json::array();
-    double bytes = 0, lines = c.counter_lines_per_step;
+    double bytes = 0, lines = c.counter_lines_per_step();
     for (const HaloCrossing& h : c.per_step) {
       halos.push_back({{"halo", h.name}, {"bytes", h.bytes}, {"cache_lines", h.lines}});
       bytes += h.bytes;
@@ -94,7 +94,7 @@ Json thread_facts_json(const RunFacts& facts) {
                                        {{"bytes", bytes},
                                         {"cache_lines", lines},
                                         {"rendezvous", c.calls_per_step},
-                                        {"counter_lines", c.counter_lines_per_step},
+                                        {"counter_lines", c.counter_lines_per_step()},
                                         {"halos", halos}}},
                                       {"per_thread", ranks_json(c.per_thread, "thread")}};
   }

@@ -201,11 +201,9 @@ ThreadCrossing ThreadParts::crossing() const {
     times.slice_bytes = slice_bytes_ / c.threads;
     c.per_thread.push_back(times);
   }
-  // Every call is a rendezvous: each thread reads every other's counter.
   double calls = 0;
   for (const HaloTally& t : parts_[0]->part.halo_cost.tallies) calls += t.calls;
   c.calls_per_step = calls / steps;
-  c.counter_lines_per_step = c.calls_per_step * c.threads * (c.threads - 1);
   return c;
 }
 
