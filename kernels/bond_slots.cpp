@@ -2,30 +2,72 @@
 
 #include <map>
 #include <utility>
+#include <vector>
 
 namespace mpsolid {
 
 namespace {
 constexpr std::size_t kMinPatternParticles = 16;
-constexpr std::size_t kDirectionShare = 8;  // a direction serves at least n / 8 bonds
+constexpr std::size_t kDirectionShare = 8;  // a direction serves an eighth of its span
+constexpr std::size_t kMinDirectionBonds = 16;
+// Owners of one offset further apart than this belong to separate spans
+// (two bodies whose rows have the same length, or a body and the bonds
+// between two others).
+constexpr std::size_t kSpanGap = 64;
+
+// The direction of the bond (owner, owner + offset), or none.
+class DirectionIndex {
+ public:
+  void add(const BondSlots::Direction& d, std::size_t index) { of_[d.offset].push_back(index); }
+  const BondSlots::Direction* find(const BondSlots& s, std::size_t offset,
+                                   std::size_t owner) const {
+    const auto at = of_.find(offset);
+    if (at == of_.end()) return nullptr;
+    for (const std::size_t k : at->second) {
+      const BondSlots::Direction& d = s.directions[k];
+      if (owner >= d.first && owner < d.last) return &d;
+    }
+    return nullptr;
+  }
+
+ private:
+  std::map<std::size_t, std::vector<std::size_t>> of_;
+};
+
+// The dense directions: each offset's owners cut into spans at gaps wider
+// than kSpanGap, and the spans with enough bonds.
+DirectionIndex choose_directions(const BondTable& bonds, BondSlots& s) {
+  struct Span {
+    std::size_t count = 0, first = 0, last = 0;
+  };
+  std::map<std::size_t, std::vector<Span>> spans;
+  for (std::size_t i = 0; i < bonds.particle_count(); ++i)
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      if (bonds.neighbor[b] < i) continue;
+      std::vector<Span>& of = spans[bonds.neighbor[b] - i];
+      if (of.empty() || i - of.back().last > kSpanGap) of.push_back({0, i, i});
+      ++of.back().count;
+      of.back().last = i + 1;
+    }
+  DirectionIndex index;
+  for (const auto& [offset, of] : spans)
+    for (const Span& span : of)
+      if (span.count >= kMinDirectionBonds &&
+          span.count * kDirectionShare >= span.last - span.first) {
+        const BondSlots::Direction d{offset, span.first, span.last, s.dense_slots};
+        index.add(d, s.directions.size());
+        s.directions.push_back(d);
+        s.dense_slots += span.last - span.first;
+      }
+  return index;
+}
 }  // namespace
 
 BondSlots make_bond_slots(const BondTable& bonds) {
   BondSlots s;
   const std::size_t n = bonds.particle_count();
   s.particles = n;
-
-  std::map<std::size_t, std::size_t> offset_count;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
-      if (bonds.neighbor[b] > i) ++offset_count[bonds.neighbor[b] - i];
-  std::map<std::size_t, std::size_t> direction_of;
-  for (const auto& [offset, count] : offset_count)
-    if (count * kDirectionShare >= n) {
-      direction_of[offset] = s.directions.size();
-      s.directions.push_back(offset);
-    }
-  s.dense_slots = s.directions.size() * n;
+  const DirectionIndex directions = choose_directions(bonds, s);
 
   // Owner entries first (i ascending, j ascending: the extra list comes out
   // sorted by owner, then partner), then each other entry finds its owner's.
@@ -34,9 +76,8 @@ BondSlots make_bond_slots(const BondTable& bonds) {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       if (j < i) continue;
-      const auto d = direction_of.find(j - i);
-      if (d != direction_of.end()) {
-        s.entry_slot[b] = static_cast<std::uint32_t>(d->second * n + i);
+      if (const BondSlots::Direction* d = directions.find(s, j - i, i)) {
+        s.entry_slot[b] = static_cast<std::uint32_t>(d->slot(i));
       } else {
         s.entry_slot[b] = static_cast<std::uint32_t>(s.dense_slots + s.extra_owner.size());
         s.extra_owner.push_back(static_cast<std::uint32_t>(i));
@@ -47,9 +88,8 @@ BondSlots make_bond_slots(const BondTable& bonds) {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       if (j > i) continue;
-      const auto d = direction_of.find(i - j);
-      if (d != direction_of.end()) {
-        s.entry_slot[b] = static_cast<std::uint32_t>(d->second * n + j);
+      if (const BondSlots::Direction* d = directions.find(s, i - j, j)) {
+        s.entry_slot[b] = static_cast<std::uint32_t>(d->slot(j));
         continue;
       }
       std::size_t k =
@@ -60,36 +100,35 @@ BondSlots make_bond_slots(const BondTable& bonds) {
       s.entry_slot[b] = static_cast<std::uint32_t>(s.dense_slots + k);
     }
 
-  // Rows by their offsets; the common ones whose offsets all have dense
-  // arrays become patterns.
-  std::vector<std::vector<std::ptrdiff_t>> row_offsets(n);
-  std::map<std::vector<std::ptrdiff_t>, std::size_t> row_count;
+  // Rows by their entries' offsets and slot shifts (slot - m, the same for
+  // every particle m of a body's interior); the common ones whose entries
+  // all have dense slots become patterns.
+  using Row = std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>;
+  std::vector<Row> rows(n);
+  std::map<Row, std::size_t> row_count;
   for (std::size_t i = 0; i < n; ++i) {
     bool dense = true;
+    const auto m = static_cast<std::ptrdiff_t>(i);
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const auto delta =
-          static_cast<std::ptrdiff_t>(bonds.neighbor[b]) - static_cast<std::ptrdiff_t>(i);
-      dense = dense && direction_of.count(static_cast<std::size_t>(delta > 0 ? delta : -delta));
-      row_offsets[i].push_back(delta);
+      const auto delta = static_cast<std::ptrdiff_t>(bonds.neighbor[b]) - m;
+      dense = dense && s.entry_slot[b] < s.dense_slots;
+      rows[i].emplace_back(delta, static_cast<std::ptrdiff_t>(s.entry_slot[b]) - m);
     }
-    if (dense) ++row_count[row_offsets[i]];
+    if (dense) ++row_count[rows[i]];
   }
-  std::map<std::vector<std::ptrdiff_t>, std::int32_t> pattern_of;
-  for (const auto& [offsets, count] : row_count) {
+  std::map<Row, std::int32_t> pattern_of;
+  for (const auto& [row, count] : row_count) {
     if (count < kMinPatternParticles) continue;
-    pattern_of[offsets] = static_cast<std::int32_t>(s.patterns.size());
+    pattern_of[row] = static_cast<std::int32_t>(s.patterns.size());
     BondSlots::Pattern pattern;
-    for (const std::ptrdiff_t delta : offsets) {
-      const auto d = static_cast<std::ptrdiff_t>(
-          direction_of[static_cast<std::size_t>(delta > 0 ? delta : -delta)]);
-      const auto base = d * static_cast<std::ptrdiff_t>(n);
-      pattern.slot_shift.push_back(delta > 0 ? base : base + delta);
+    for (const auto& [delta, shift] : row) {
+      pattern.slot_shift.push_back(shift);
       pattern.partner_shift.push_back(delta);
     }
     s.patterns.push_back(std::move(pattern));
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const auto p = pattern_of.find(row_offsets[i]);
+    const auto p = pattern_of.find(rows[i]);
     const std::int32_t id = p == pattern_of.end() ? -1 : p->second;
     if (!s.runs.empty() && s.runs.back().pattern == id)
       s.runs.back().end = i + 1;

@@ -8,10 +8,13 @@
 //
 // Slot layout, chosen so that the hot loops run over contiguous memory:
 // - dense slots: for each common index offset o = j - i > 0 (a "direction"),
-//   one array of n slots, bond (i, i + o) at d * n + i. A lattice body stored
-//   row by row has the same offsets at every interior particle, so the
-//   owner pass is a unit-stride loop per direction. A dense slot without a
-//   bond is computed and never read.
+//   one array of slots over a span of owners that have a bond of that
+//   offset, bond (i, i + o) at base + i - first. A lattice body stored row
+//   by row has the same offsets at every interior particle, so the owner
+//   pass is a unit-stride loop per direction, and a body's own offsets (a
+//   plate whose rows are longer than the rod's) cost only its span; one
+//   offset used by two bodies far apart in storage has a span in each. A
+//   dense slot without a bond is computed and never read.
 // - extra slots: bonds whose offset is no direction (between bodies, a few
 //   per body), after the dense ones, with their owner and partner listed.
 // Particles whose rows have one pattern of offsets (a lattice interior)
@@ -44,9 +47,16 @@ struct BondSlots {
     std::int32_t pattern = -1;
   };
 
+  // The bonds (i, i + offset) for owners i in [first, last), at slots
+  // base + i - first.
+  struct Direction {
+    std::size_t offset = 0, first = 0, last = 0, base = 0;
+    std::size_t slot(std::size_t owner) const { return base + owner - first; }
+  };
+
   std::size_t particles = 0;
-  std::vector<std::size_t> directions;                    // offsets with a dense array, ascending
-  std::size_t dense_slots = 0;                            // directions.size() * particles
+  std::vector<Direction> directions;                      // by offset, then span
+  std::size_t dense_slots = 0;                            // the directions' spans together
   std::vector<std::uint32_t> extra_owner, extra_partner;  // slot dense_slots + k, by owner
   std::vector<std::uint32_t> entry_slot;                  // slot of each bond table entry
   std::vector<Pattern> patterns;
@@ -72,9 +82,11 @@ class SlotArrays {
   std::vector<double> data_;
 };
 
-// Directions: the offsets used by at least particles / 8 bonds (fewer would
-// leave most of their array empty). Patterns: rows shared by at least 16
-// particles whose offsets are all directions.
+// Directions: each offset's owners cut into spans where two lie more than
+// 64 apart; a span with at least 16 bonds, owned by at least an eighth of
+// its particles (fewer would leave most of its array empty), is dense.
+// Patterns: rows shared by at least 16 particles whose bonds all have
+// dense slots.
 BondSlots make_bond_slots(const BondTable& bonds);
 
 // A per-slot copy of a per-entry quantity that is the same from both ends of
@@ -90,19 +102,21 @@ void fill_slot_array(const BondSlots& slots, const BondTable& bonds,
 // `owners` whose partner is in `partners`, except the bonds between two
 // particles below `fixed_end` (walls: stored first, never moving): for each
 // direction, dense(count, slot, i, j) for `count` consecutive owners from i
-// (partners from j = i + o, slots from `slot`).
+// in its span (partners from j = i + o, slots from `slot`).
 template <class Dense>
 void for_each_dense_slot(const BondSlots& s, Range owners, std::size_t fixed_end, Dense&& dense,
                          Range partners = {0, static_cast<std::size_t>(-1)}) {
   const std::size_t n = s.particles;
-  for (std::size_t d = 0; d < s.directions.size(); ++d) {
-    const std::size_t o = s.directions[d];
+  for (const BondSlots::Direction& d : s.directions) {
+    const std::size_t o = d.offset;
     // Owners below fixed_end - o have their partner below fixed_end too.
     const std::size_t lowest = std::max(fixed_end, partners.begin);
     const std::size_t highest = std::min(n, partners.end);
-    const std::size_t begin = std::max(owners.begin, lowest > o ? lowest - o : 0);
-    const std::size_t end = std::min(owners.end, highest > o ? highest - o : 0);
-    if (begin < end) dense(end - begin, d * n + begin, begin, begin + o);
+    const std::size_t begin =
+        std::max({owners.begin, d.first, lowest > o ? lowest - o : std::size_t{0}});
+    const std::size_t end =
+        std::min({owners.end, d.last, highest > o ? highest - o : std::size_t{0}});
+    if (begin < end) dense(end - begin, d.slot(begin), begin, begin + o);
   }
 }
 

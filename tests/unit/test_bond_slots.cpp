@@ -35,8 +35,16 @@ TEST(BondSlots, EveryBondHasOneSlotSharedByItsTwoEntries) {
     const BondSlots s = make_bond_slots(bonds);
     const std::size_t n = bonds.particle_count();
     ASSERT_EQ(s.particles, n);
-    ASSERT_EQ(s.dense_slots, s.directions.size() * n);
     ASSERT_FALSE(s.directions.empty());
+    // The directions' spans lie end to end, each inside [0, n).
+    std::size_t base = 0;
+    for (const BondSlots::Direction& d : s.directions) {
+      EXPECT_EQ(d.base, base);
+      ASSERT_LT(d.first, d.last);
+      ASSERT_LE(d.last + d.offset, n);
+      base += d.last - d.first;
+    }
+    ASSERT_EQ(s.dense_slots, base);
     std::set<std::uint32_t> used;
     for (std::size_t i = 0; i < n; ++i)
       for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -50,8 +58,14 @@ TEST(BondSlots, EveryBondHasOneSlotSharedByItsTwoEntries) {
         EXPECT_TRUE(used.insert(slot).second) << "slot " << slot << " used twice";
         // The slot says which bond it holds: owner and partner.
         if (slot < s.dense_slots) {
-          EXPECT_EQ(slot % n, i);
-          EXPECT_EQ(s.directions[slot / n], j - i);
+          // The direction whose span of slots holds it names the bond.
+          const auto d = std::find_if(s.directions.begin(), s.directions.end(),
+                                      [&](const BondSlots::Direction& u) {
+                                        return slot >= u.base && slot < u.base + (u.last - u.first);
+                                      });
+          ASSERT_NE(d, s.directions.end()) << "a dense slot of no direction";
+          EXPECT_EQ(d->offset, j - i);
+          EXPECT_EQ(slot, d->slot(i));
         } else {
           EXPECT_EQ(s.extra_owner[slot - s.dense_slots], i);
           EXPECT_EQ(s.extra_partner[slot - s.dense_slots], j);
