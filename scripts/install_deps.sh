@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   cmake g++ make git
   libeigen3-dev libnanoflann-dev libhdf5-dev libgtest-dev libbenchmark-dev
-  libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev clang-format
+  libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev libboost-dev clang-format
   python3 python3-h5py python3-matplotlib
   python3-dev python3-numpy python3-setuptools python3-wheel python3-venv python3-pip pybind11-dev python3-pybind11
   libopenmpi-dev openmpi-bin

@@ -12,6 +12,7 @@
 
 #include "src/case/case_overrides.hpp"
 #include "src/case/resolved_case.hpp"
+#include "src/case/shape_reader.hpp"
 #include "src/case/table_reader.hpp"
 
 namespace mpsolid {
@@ -50,10 +51,6 @@ void for_each_named_table(const TomlValue& section, const std::string& section_n
     each(name, value, r);
     r.finish();
   }
-}
-
-bool rectangles_overlap(const BodySpec& a, const BodySpec& b) {
-  return a.x[0] < b.x[1] && b.x[0] < a.x[1] && a.y[0] < b.y[1] && b.y[0] < a.y[1];
 }
 
 std::vector<std::string> names_of(const auto& items) {
@@ -138,46 +135,42 @@ void read_bodies(TableReader& top, CaseSpec& c) {
     throw InputError(fmt::format("{}: bodies: at least one body is needed", file));
   std::int64_t particle_total = 0;
   for_each_named_table(
-      table, "bodies", file, "kind, material, x, y",
+      table, "bodies", file, "kind, material and a shape (x, y for a rectangle)",
       [&](const std::string& name, const TomlValue& value, TableReader& r) {
         BodySpec b;
         b.name = name;
         b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
         b.material =
             index_by_name(r, "material", "the name of a [materials.NAME] table", c.materials);
-        r.pair("x", "the rectangle's x range [x0, x1] in m", b.x);
-        r.pair("y", "the rectangle's y range [y0, y1] in m", b.y);
-        if (!(b.x[0] < b.x[1]))
-          r.fail("x", fmt::format("needs x0 < x1, got [{}, {}]", b.x[0], b.x[1]));
-        if (!(b.y[0] < b.y[1]))
-          r.fail("y", fmt::format("needs y0 < y1, got [{}, {}]", b.y[0], b.y[1]));
+        b.shape = read_shape(r, file);
         read_body_motion(r, b);
         // Estimate in floating point first: integer lattice indices would
         // overflow for an absurdly small l0.
-        const double estimate = ((b.x[1] - b.x[0]) / c.l0 + 1.0) * ((b.y[1] - b.y[0]) / c.l0 + 1.0);
+        const Box2 box = b.shape.bounds();
+        const double estimate =
+            ((box.hi.x - box.lo.x) / c.l0 + 1.0) * ((box.hi.y - box.lo.y) / c.l0 + 1.0);
         if (!(estimate < kMaxParticles))
           top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more "
                                      "than this build supports ({} particles)",
                                      c.l0, estimate, name, kMaxParticles));
         const std::int64_t sites = b.site_count(c.l0);
         if (sites == 0)
-          throw InputError(
-              fmt::format("{}: bodies.{}: the body is empty: no lattice site (centre at (k + "
-                          "1/2) l0, l0 = {} m) "
-                          "lies in x = [{}, {}), y = [{}, {})",
-                          origin(value, file), name, c.l0, b.x[0], b.x[1], b.y[0], b.y[1]));
+          throw InputError(fmt::format(
+              "{}: bodies.{}: the body is empty: no lattice site (centre at (k + 1/2) l0, l0 = "
+              "{} m) lies in its {} (bounding box x = [{}, {}], y = [{}, {}]); make it larger "
+              "or l0 smaller",
+              origin(value, file), name, c.l0, region_kind(b.shape.region), box.lo.x, box.hi.x,
+              box.lo.y, box.hi.y));
         particle_total += sites;
         c.bodies.push_back(b);
       });
   for (std::size_t a = 0; a < c.bodies.size(); ++a)
     for (std::size_t b = a + 1; b < c.bodies.size(); ++b)
-      if (rectangles_overlap(c.bodies[a], c.bodies[b]))
+      if (shapes_overlap(c.bodies[a].shape, c.bodies[b].shape))
         throw InputError(fmt::format(
-            "{}: bodies.{} and bodies.{} overlap (x = [{}, {}], y = [{}, {}] and x = [{}, {}], "
-            "y = [{}, {}]); bodies may touch but not overlap",
-            file, c.bodies[a].name, c.bodies[b].name, c.bodies[a].x[0], c.bodies[a].x[1],
-            c.bodies[a].y[0], c.bodies[a].y[1], c.bodies[b].x[0], c.bodies[b].x[1],
-            c.bodies[b].y[0], c.bodies[b].y[1]));
+            "{}: bodies.{} ({}) and bodies.{} ({}) overlap; bodies may touch but not overlap", file,
+            c.bodies[a].name, region_kind(c.bodies[a].shape.region), c.bodies[b].name,
+            region_kind(c.bodies[b].shape.region)));
   if (static_cast<double>(particle_total) >= kMaxParticles)
     top.fail("l0", fmt::format("l0 = {} m gives {} particles, more than this build supports ({} "
                                "particles)",
@@ -217,15 +210,16 @@ void read_probes(TableReader& top, CaseSpec& c) {
         ProbeSpec probe;
         probe.name = name;
         r.pair("at", "the initial point [x, y] in m whose nearest particle is followed", probe.at);
-        // A point off every body is a typo, not a request to follow a far particle.
+        // A point off every body is a typo, not a request to follow a far
+        // particle: some body's site must lie within 1.5 l0 of it.
         const bool on_a_body =
             std::any_of(c.bodies.begin(), c.bodies.end(), [&](const BodySpec& b) {
-              return probe.at[0] >= b.x[0] - c.l0 && probe.at[0] <= b.x[1] + c.l0 &&
-                     probe.at[1] >= b.y[0] - c.l0 && probe.at[1] <= b.y[1] + c.l0;
+              return shape_has_site_near(b.shape, {probe.at[0], probe.at[1]}, c.l0, 1.5 * c.l0);
             });
         if (!on_a_body)
-          r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body", probe.at[0],
-                                   probe.at[1], c.l0));
+          r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body (no particle "
+                                   "within 1.5 l0)",
+                                   probe.at[0], probe.at[1], c.l0));
         c.probes.push_back(probe);
       });
 }

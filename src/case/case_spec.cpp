@@ -42,10 +42,6 @@ std::int64_t CaseSpec::steps_per_history() const {
   return std::min(steps_per_frame(), steps_in(history_interval, dt));
 }
 
-std::int64_t BodySpec::site_count(double l0) const {
-  return lattice_span(x[0], x[1], l0).count() * lattice_span(y[0], y[1], l0).count();
-}
-
 std::int64_t CaseSpec::particle_count() const {
   std::int64_t n = 0;
   for (const BodySpec& b : bodies) n += b.site_count(l0);

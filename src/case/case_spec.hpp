@@ -8,6 +8,7 @@
 
 #include "src/core/material.hpp"
 #include "src/core/option_table.hpp"
+#include "src/core/region.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -30,9 +31,8 @@ enum class Hold : std::int8_t { none = 0, x = 1, y = 2 };
 struct BodySpec {
   std::string name;
   Kind kind = Kind::elastic;
-  int material = 0;      // index into CaseSpec::materials
-  double x[2] = {0, 0};  // rectangle [x0, x1] (m)
-  double y[2] = {0, 0};  // rectangle [y0, y1] (m)
+  int material = 0;  // index into CaseSpec::materials
+  Shape shape;       // the region the body fills, less its holes (m)
   // Initial motion: a uniform velocity, plus a spin (rad/s) about the centroid
   // of the body's sites, plus (elastic bodies) a bending mode.
   double velocity[2] = {0, 0};
@@ -40,8 +40,8 @@ struct BodySpec {
   bool has_mode = false;
   BendingMode mode;
   Hold hold = Hold::none;
-  // Lattice sites in the rectangle at spacing l0 (centres at (k + 1/2) l0).
-  std::int64_t site_count(double l0) const;
+  // Lattice sites in the shape at spacing l0 (centres at (k + 1/2) l0).
+  std::int64_t site_count(double l0) const { return count_shape_sites(shape, l0); }
 };
 
 // A named probe: the particle nearest `at` in the initial configuration

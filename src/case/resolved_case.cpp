@@ -24,11 +24,50 @@ const char* hold_name(Hold hold) {
   return hold == Hold::x ? "x" : hold == Hold::y ? "y" : "none";
 }
 
+std::string pair(double a, double b) {
+  return fmt::format("[{}, {}]", format_number(a), format_number(b));
+}
+
+// A region's keys, "key = value" joined by `separator`.
+std::string region_keys(const Region& region, const char* separator) {
+  std::vector<std::string> keys;
+  const std::string kind = region_kind(region);
+  if (kind != "rectangle") keys.push_back(fmt::format("shape = \"{}\"", kind));
+  if (const auto* r = std::get_if<RectangleRegion>(&region)) {
+    keys.push_back("x = " + pair(r->x[0], r->x[1]));
+    keys.push_back("y = " + pair(r->y[0], r->y[1]));
+    if (r->angle_deg != 0) keys.push_back("angle = " + format_number(r->angle_deg));
+  } else if (const auto* ci = std::get_if<CircleRegion>(&region)) {
+    keys.push_back("center = " + pair(ci->center.x, ci->center.y));
+    keys.push_back("radius = " + format_number(ci->radius));
+  } else if (const auto* e = std::get_if<EllipseRegion>(&region)) {
+    keys.push_back("center = " + pair(e->center.x, e->center.y));
+    keys.push_back("semi_axes = " + pair(e->a, e->b));
+    if (e->angle_deg != 0) keys.push_back("angle = " + format_number(e->angle_deg));
+  } else if (const auto* a = std::get_if<AnnulusRegion>(&region)) {
+    keys.push_back("center = " + pair(a->center.x, a->center.y));
+    keys.push_back("radii = " + pair(a->inner, a->outer));
+  } else if (const auto* p = std::get_if<PolygonRegion>(&region)) {
+    // Inline, so the resolved case stands alone (a vertex file's too).
+    std::vector<std::string> points;
+    for (const Point2& v : p->vertices) points.push_back(pair(v.x, v.y));
+    keys.push_back(fmt::format("vertices = [{}]", fmt::join(points, ", ")));
+  }
+  return fmt::format("{}", fmt::join(keys, separator));
+}
+
+std::string shape_toml(const Shape& shape) {
+  std::string out = region_keys(shape.region, "\n") + "\n";
+  if (shape.holes.empty()) return out;
+  std::vector<std::string> holes;
+  for (const Region& hole : shape.holes) holes.push_back("{ " + region_keys(hole, ", ") + " }");
+  return out + fmt::format("holes = [\n  {},\n]\n", fmt::join(holes, ",\n  "));
+}
+
 std::string body_toml(const CaseSpec& c, const BodySpec& b) {
   std::string out = fmt::format(
-      "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\nx = [{}, {}]\ny = [{}, {}]\n", key(b.name),
-      kind_name(b.kind), quote(c.materials[static_cast<std::size_t>(b.material)].name),
-      format_number(b.x[0]), format_number(b.x[1]), format_number(b.y[0]), format_number(b.y[1]));
+      "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\n{}", key(b.name), kind_name(b.kind),
+      quote(c.materials[static_cast<std::size_t>(b.material)].name), shape_toml(b.shape));
   // Initial motion and holds only where set: walls accept none of them.
   if (b.velocity[0] != 0 || b.velocity[1] != 0)
     out += fmt::format("velocity = [{}, {}]\n", format_number(b.velocity[0]),

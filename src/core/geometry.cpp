@@ -14,15 +14,4 @@ LatticeSpan lattice_span(double lo, double hi, double l0) {
   return span;
 }
 
-std::vector<Site> fill_rectangle(const double x[2], const double y[2], double l0) {
-  const LatticeSpan sx = lattice_span(x[0], x[1], l0);
-  const LatticeSpan sy = lattice_span(y[0], y[1], l0);
-  std::vector<Site> sites;
-  sites.reserve(static_cast<std::size_t>(sx.count() * sy.count()));
-  for (std::int64_t m = sy.first; m <= sy.last; ++m)
-    for (std::int64_t k = sx.first; k <= sx.last; ++k)
-      sites.push_back({lattice_coordinate(k, l0), lattice_coordinate(m, l0)});
-  return sites;
-}
-
 }  // namespace mpsolid

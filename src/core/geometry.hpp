@@ -1,5 +1,5 @@
 #pragma once
-// Bodies are rectangles filled with the sites of one global square lattice:
+// The one global square lattice that bodies fill (src/core/region.hpp):
 // site centres at ((k + 0.5) l0, (m + 0.5) l0). All bodies share the lattice,
 // so bonds across bodies have the same spacing as inside them, and one
 // `l0` override refines the whole case.
@@ -20,12 +20,5 @@ LatticeSpan lattice_span(double lo, double hi, double l0);
 inline double lattice_coordinate(std::int64_t k, double l0) {
   return (static_cast<double>(k) + 0.5) * l0;
 }
-
-struct Site {
-  double x, y;
-};
-
-// Sites of the rectangle [x0, x1) x [y0, y1), row by row (y outer, x inner).
-std::vector<Site> fill_rectangle(const double x[2], const double y[2], double l0);
 
 }  // namespace mpsolid

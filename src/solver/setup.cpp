@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "neighbor/bond_search.hpp"
-#include "src/core/geometry.hpp"
+#include "src/core/region.hpp"
 
 namespace mpsolid {
 
@@ -31,7 +31,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
   std::int32_t next_id = 0;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
-    for (const Site& site : fill_rectangle(spec.bodies[b].x, spec.bodies[b].y, spec.l0))
+    for (const Point2& site : fill_shape(spec.bodies[b].shape, spec.l0))
       by_body[b].push_back({site.x, site.y, next_id++, static_cast<std::int32_t>(b)});
 
   std::vector<std::size_t> order(spec.bodies.size());

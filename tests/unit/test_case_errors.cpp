@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <regex>
 #include <string>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 #include "src/core/types.hpp"
@@ -331,8 +333,9 @@ TEST(CaseErrors, UnknownTableAtTopLevel) {
 TEST(CaseErrors, UnknownKeyInAMaterialBodyAndLoad) {
   EXPECT_INPUT_ERROR(edit("rho = 1010.0", "rho = 1010.0\nG = 1.0"),
                      {"bad.toml", "materials.rubber.G", "unknown key", "E, nu, rho"});
-  EXPECT_INPUT_ERROR(edit("kind = \"elastic\"", "kind = \"elastic\"\nz = [0.0, 1.0]"),
-                     {"bad.toml", "bodies.rod.z", "unknown key", "kind, material, x, y"});
+  EXPECT_INPUT_ERROR(
+      edit("kind = \"elastic\"", "kind = \"elastic\"\nz = [0.0, 1.0]"),
+      {"bad.toml", "bodies.rod.z", "unknown key", "kind, material, shape, x, y, angle"});
   EXPECT_INPUT_ERROR(edit("start = 0.0", "start = 0.0\nend = 1.0"),
                      {"bad.toml", "loads.shock.end", "unknown key", "type, body, force, start"});
 }
@@ -497,6 +500,88 @@ TEST(CaseErrors, RangeBoundsOutOfOrder) {
   EXPECT_INPUT_ERROR(
       edit("y = [-0.020, 0.020]\n\n[bodies.plate]", "y = [0.020, -0.020]\n\n[bodies.plate]"),
       {"bad.toml", "bodies.rod.y", "y0 < y1"});
+}
+
+// ---- shapes ----------------------------------------------------------------
+
+// The base case with one more body: `keys` after kind and material.
+std::string with_body(const std::string& keys) {
+  return base_toml() + "\n[bodies.extra]\nkind = \"elastic\"\nmaterial = \"rubber\"\n" + keys +
+         "\n";
+}
+
+TEST(CaseErrors, ShapesAreReadAndChecked) {
+  EXPECT_FALSE(
+      error_of(with_body("shape = \"circle\"\ncenter = [0.3, 0.0]\nradius = 0.01")).has_value());
+  EXPECT_FALSE(
+      error_of(with_body("shape = \"polygon\"\nvertices = [[0.3, 0], [0.4, 0], [0.35, 0.05]]"))
+          .has_value());
+  EXPECT_INPUT_ERROR(with_body("shape = \"square\"\nx = [0.3, 0.4]\ny = [0, 0.1]"),
+                     {"bad.toml", "bodies.extra.shape",
+                      "rectangle, circle, ellipse, annulus, "
+                      "polygon"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"circle\"\ncenter = [0.3, 0.0]\nradius = -0.01"),
+                     {"bad.toml", "bodies.extra.radius", "(0, inf) m"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"circle\"\ncenter = [0.3, 0.0]"),
+                     {"bad.toml", "bodies.extra.radius"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"annulus\"\ncenter = [0.3, 0.0]\nradii = [0.02, 0.01]"),
+                     {"bad.toml", "bodies.extra.radii", "0 < inner < outer"});
+  EXPECT_INPUT_ERROR(
+      with_body("shape = \"ellipse\"\ncenter = [0.3, 0.0]\nsemi_axes = [0.02, 0.01]\nradius = 1"),
+      {"bad.toml", "bodies.extra", "radius"});
+}
+
+TEST(CaseErrors, SelfIntersectingPolygonNamesTheCrossingEdges) {
+  // A bow tie: edge 1 (vertex 1 to 2) crosses edge 3 (vertex 3 to 4).
+  EXPECT_INPUT_ERROR(
+      with_body("shape = \"polygon\"\nvertices = [[0.3, 0], [0.4, 0.1], [0.4, 0], [0.3, 0.1]]"),
+      {"bad.toml", "bodies.extra.vertices", "not a simple polygon",
+       "edges 1 (from vertex 1 to 2) and 3 (from vertex 3 to 4) cross at (0.35, 0.05)"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices = [[0.3, 0], [0.4, 0]]"),
+                     {"bad.toml", "bodies.extra.vertices", "at least 3 vertices"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices = [[0.3, 0], [0.4, 0], [0.5, 0]]"),
+                     {"bad.toml", "bodies.extra.vertices", "no area"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\""),
+                     {"bad.toml", "bodies.extra", "vertices_file"});
+}
+
+TEST(CaseErrors, HoleOutsideItsBody) {
+  EXPECT_FALSE(error_of(with_body("x = [0.3, 0.4]\ny = [0, 0.1]\nholes = [{ shape = \"circle\", "
+                                  "center = [0.35, 0.05], radius = 0.02 }]"))
+                   .has_value());
+  EXPECT_INPUT_ERROR(with_body("x = [0.3, 0.4]\ny = [0, 0.1]\nholes = [{ shape = \"circle\", "
+                               "center = [0.39, 0.05], radius = 0.02 }]"),
+                     {"bad.toml", "bodies.extra.holes[0]", "not inside the body's rectangle"});
+  EXPECT_INPUT_ERROR(with_body("x = [0.3, 0.4]\ny = [0, 0.1]\nholes = [{ shape = \"circle\", "
+                               "center = [0.35, 0.05], radius = 0.02, radios = 1 }]"),
+                     {"bad.toml", "bodies.extra.holes[0]", "radios"});
+}
+
+TEST(CaseErrors, CurvedBodiesThatOverlapNameBoth) {
+  // A disk reaching 1 mm into the rod's far end.
+  EXPECT_INPUT_ERROR(with_body("shape = \"circle\"\ncenter = [0.05, 0.029]\nradius = 0.01"),
+                     {"bad.toml", "bodies.extra (circle)", "bodies.rod (rectangle)", "overlap"});
+  // Touching it from above is fine.
+  EXPECT_FALSE(
+      error_of(with_body("shape = \"circle\"\ncenter = [0.05, 0.03]\nradius = 0.01")).has_value());
+}
+
+TEST(CaseErrors, VertexFileProblemsNameTheLine) {
+  const std::string dir = ::testing::TempDir();
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::FILE* f = std::fopen((dir + "/" + name).c_str(), "w");
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+    return dir + "/" + name;
+  };
+  const std::string good = write("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");
+  EXPECT_FALSE(
+      error_of(with_body("shape = \"polygon\"\nvertices_file = \"" + good + "\"")).has_value());
+  const std::string bad = write("bad.csv", "x,y\n0.3,0\n0.4,zero\n0.35,0.05\n");
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices_file = \"" + bad + "\""),
+                     {bad + ":3:", "bodies.extra.vertices_file", "two finite numbers", "0.4,zero"});
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices_file = \"" + dir + "/missing.csv\""),
+                     {"missing.csv", "bodies.extra.vertices_file", "cannot read"});
 }
 
 // ---- references between tables ---------------------------------------------
@@ -672,11 +757,11 @@ TEST(GoodCases, ShippedCasesParse) {
   // The experiment's geometry: contact on, a wall three times the rod's height.
   EXPECT_TRUE(strong.contact.enabled);
   EXPECT_EQ(strong.contact.bodies.size(), 3u);
-  EXPECT_DOUBLE_EQ(strong.bodies.at(2).y[1], 0.060);
+  EXPECT_DOUBLE_EQ(std::get<RectangleRegion>(strong.bodies.at(2).shape.region).y[1], 0.060);
 
   const CaseSpec paper_geometry = load_case(shipped("shock_rod_55kN_short_wall.toml"));
   EXPECT_FALSE(paper_geometry.contact.enabled);
-  EXPECT_DOUBLE_EQ(paper_geometry.bodies.at(2).y[1], 0.020);
+  EXPECT_DOUBLE_EQ(std::get<RectangleRegion>(paper_geometry.bodies.at(2).shape.region).y[1], 0.020);
   EXPECT_TRUE(load_case(shipped("colliding_blocks.toml")).contact.enabled);
 }
 
@@ -771,11 +856,8 @@ void expect_same_case(const CaseSpec& a, const CaseSpec& b) {
     EXPECT_EQ(a.bodies[k].name, b.bodies[k].name);
     EXPECT_EQ(a.bodies[k].kind, b.bodies[k].kind);
     EXPECT_EQ(a.bodies[k].material, b.bodies[k].material);
-    for (int e = 0; e < 2; ++e) {
-      EXPECT_EQ(a.bodies[k].x[e], b.bodies[k].x[e]);
-      EXPECT_EQ(a.bodies[k].y[e], b.bodies[k].y[e]);
-      EXPECT_EQ(a.bodies[k].velocity[e], b.bodies[k].velocity[e]);
-    }
+    EXPECT_TRUE(a.bodies[k].shape == b.bodies[k].shape);
+    for (int e = 0; e < 2; ++e) EXPECT_EQ(a.bodies[k].velocity[e], b.bodies[k].velocity[e]);
     EXPECT_EQ(a.bodies[k].spin, b.bodies[k].spin);
     EXPECT_EQ(a.bodies[k].hold, b.bodies[k].hold);
     EXPECT_EQ(a.bodies[k].has_mode, b.bodies[k].has_mode);

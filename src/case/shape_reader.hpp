@@ -1,0 +1,30 @@
+#pragma once
+// A body's shape from its [bodies.NAME] table (docs/running.md, "Shapes"):
+//   shape = "rectangle" (the default): x = [x0, x1], y = [y0, y1], angle
+//     (degrees, counter-clockwise about the centre; default 0);
+//   shape = "circle": center = [x, y], radius;
+//   shape = "ellipse": center, semi_axes = [a, b], angle;
+//   shape = "annulus": center, radii = [inner, outer];
+//   shape = "polygon": vertices = [[x, y], ...] or vertices_file (a CSV
+//     file of x, y lines, relative to the case file);
+//   holes = [{ shape = ..., ... }, ...]: regions cut out, each inside the
+//     body's region.
+// Every problem is an InputError naming the file (and line), the key and
+// what is allowed.
+#include <string>
+
+#include "src/case/table_reader.hpp"
+#include "src/core/region.hpp"
+
+namespace mpsolid {
+
+// The shape of the body whose table `r` reads; `case_file` is the case's
+// path (vertex files are found beside it).
+Shape read_shape(TableReader& r, const std::string& case_file);
+
+// The vertices of a CSV file: one "x, y" per line (commas or blanks
+// between), blank lines, lines starting with '#' and one header line of
+// words skipped. Throws InputError naming the file and line.
+std::vector<Point2> read_vertices_file(const std::string& path, const std::string& key_path);
+
+}  // namespace mpsolid
