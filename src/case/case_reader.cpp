@@ -181,20 +181,25 @@ void read_loads(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("loads");
   if (!table) return;
   for_each_named_table(
-      *table, "loads", top.file(), "body, force, start",
+      *table, "loads", top.file(), "type, body, force or acceleration, start",
       [&](const std::string& name, const TomlValue&, TableReader& r) {
         LoadSpec l;
         l.name = name;
         const std::string type = r.string_or("type", "step");
-        if (type != "step")
-          r.fail("type", fmt::format("unknown load type '{}' (allowed: step)", type));
+        if (type != "step" && type != "acceleration")
+          r.fail("type", fmt::format("unknown load type '{}' (allowed: step, acceleration)", type));
+        l.type = type == "step" ? LoadSpec::Type::step : LoadSpec::Type::acceleration;
         l.body = index_by_name(r, "body", "the name of a [bodies.NAME] table", c.bodies);
         const BodySpec& body = c.bodies[static_cast<std::size_t>(l.body)];
         if (body.kind == Kind::wall)
           r.fail("body",
                  fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing",
                              body.name));
-        r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
+        if (l.type == LoadSpec::Type::step)
+          r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
+        else
+          r.pair("acceleration", "the acceleration [ax, ay] in m/s^2 of every particle",
+                 l.acceleration);
         l.start = r.number_or("start", 0.0);
         r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
         c.loads.push_back(l);

@@ -51,12 +51,17 @@ struct ProbeSpec {
   double at[2] = {0, 0};
 };
 
-// A step force: total force (N over the depth) on a body from `start` on,
-// shared equally by its particles.
+// A load switched on at `start` and constant after: a total force (N over
+// the depth) shared equally by a body's particles (type "step"), or an
+// acceleration of every particle of a body (type "acceleration": gravity),
+// which is the force m a on each particle.
 struct LoadSpec {
+  enum class Type { step, acceleration };
   std::string name;
-  int body = 0;  // index into CaseSpec::bodies
-  double force[2] = {0, 0};
+  Type type = Type::step;
+  int body = 0;                     // index into CaseSpec::bodies
+  double force[2] = {0, 0};         // step: N
+  double acceleration[2] = {0, 0};  // acceleration: m/s^2
   double start = 0;
 };
 

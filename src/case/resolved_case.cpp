@@ -116,11 +116,14 @@ std::string resolved_case_toml(const CaseSpec& c) {
                        format_number(m.youngs_modulus), format_number(m.poisson_ratio),
                        format_number(m.density));
   for (const auto& b : c.bodies) out += body_toml(c, b);
-  for (const auto& l : c.loads)
-    out +=
-        fmt::format("\n[loads.{}]\ntype = \"step\"\nbody = {}\nforce = [{}, {}]\nstart = {}\n",
-                    key(l.name), quote(c.bodies[static_cast<std::size_t>(l.body)].name),
-                    format_number(l.force[0]), format_number(l.force[1]), format_number(l.start));
+  for (const auto& l : c.loads) {
+    const bool step = l.type == LoadSpec::Type::step;
+    const double* v = step ? l.force : l.acceleration;
+    out += fmt::format("\n[loads.{}]\ntype = \"{}\"\nbody = {}\n{} = {}\nstart = {}\n", key(l.name),
+                       step ? "step" : "acceleration",
+                       quote(c.bodies[static_cast<std::size_t>(l.body)].name),
+                       step ? "force" : "acceleration", pair(v[0], v[1]), format_number(l.start));
+  }
   for (const auto& probe : c.probes)
     out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),
                        format_number(probe.at[0]), format_number(probe.at[1]));

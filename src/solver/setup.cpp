@@ -99,8 +99,15 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     StepLoad load;
     load.name = l.name;
     load.range = s.body_ranges[static_cast<std::size_t>(l.body)];
-    load.fx = l.force[0];
-    load.fy = l.force[1];
+    if (l.type == LoadSpec::Type::step) {
+      load.fx = l.force[0];
+      load.fy = l.force[1];
+    } else {
+      // m a on each particle: the body's mass times a, shared equally.
+      const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
+      load.fx = mass * l.acceleration[0];
+      load.fy = mass * l.acceleration[1];
+    }
     s.loads.push_back(load);
   }
   return s;

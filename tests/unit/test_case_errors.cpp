@@ -566,6 +566,18 @@ TEST(CaseErrors, CurvedBodiesThatOverlapNameBoth) {
       error_of(with_body("shape = \"circle\"\ncenter = [0.05, 0.03]\nradius = 0.01")).has_value());
 }
 
+TEST(CaseErrors, AccelerationLoadsTakeAnAcceleration) {
+  EXPECT_FALSE(
+      error_of(edit("type = \"step\"\nbody = \"plate\"\nforce = [11200.0, 0.0]",
+                    "type = \"acceleration\"\nbody = \"plate\"\nacceleration = [0, -9.81]"))
+          .has_value());
+  EXPECT_INPUT_ERROR(
+      edit("type = \"step\"\nbody = \"plate\"", "type = \"acceleration\"\nbody = \"plate\""),
+      {"bad.toml", "loads.shock.acceleration", "m/s^2"});
+  EXPECT_INPUT_ERROR(edit("type = \"step\"", "type = \"gravity\""),
+                     {"bad.toml", "loads.shock.type", "step, acceleration"});
+}
+
 TEST(CaseErrors, VertexFileProblemsNameTheLine) {
   const std::string dir = ::testing::TempDir();
   const auto write = [&](const std::string& name, const std::string& text) {
