@@ -12,6 +12,11 @@ std::string source_path(const std::string& relative) {
   return std::string(MPSOLID_SOURCE_DIR) + "/" + relative;
 }
 
+std::string rubber_case_head(const std::string& name, const std::string& model) {
+  return "name = \"" + name + "\"\nmodel = \"" + model +
+         "\"\nl0 = 0.001\ndepth = 1.0\n\n[materials.rubber]\nE = 2.8e6\nnu = 0.45\nrho = 1010.0\n";
+}
+
 CaseSpec rod_case(const std::vector<std::string>& overrides) {
   return load_case(source_path("cases/shock_rod.toml"), overrides);
 }

@@ -10,6 +10,11 @@ namespace mpsolid::testing {
 
 std::string source_path(const std::string& relative);
 
+// The top of a case file: its name and model, l0 = 1 mm, a depth of 1 m and
+// a rubber-like material "rubber" (E 2.8 MPa, nu 0.45, rho 1010 kg/m^3);
+// the bodies, loads and [time] follow.
+std::string rubber_case_head(const std::string& name, const std::string& model);
+
 // cases/shock_rod.toml with overrides.
 CaseSpec rod_case(const std::vector<std::string>& overrides = {});
 

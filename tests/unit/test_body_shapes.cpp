@@ -56,16 +56,7 @@ TEST(BodyShapes, RectanglesWrittenAsPolygonsRunToTheSameBits) {
 // A rubber disk with an off-centre hole, spinning and moving, and a turned
 // rigid bar beside it.
 std::string shaped_case() {
-  return R"(name = "shaped"
-model = "paper"
-l0 = 0.001
-depth = 1.0
-
-[materials.rubber]
-E = 2.8e6
-nu = 0.45
-rho = 1010.0
-
+  return testing::rubber_case_head("shaped", "paper") + R"(
 [bodies.disk]
 kind = "elastic"
 material = "rubber"

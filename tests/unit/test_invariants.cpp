@@ -120,16 +120,7 @@ TEST(Loads, ImpulseEqualsForceTimesTimeBeforeTheWaveReachesTheWall) {
 // An elastic disk with a hole and a rigid bar, far apart, both under
 // gravity from t = 0 (the bar's from a later start).
 CaseSpec falling_case(const std::string& model) {
-  return load_case_text(R"(name = "falling"
-model = ")" + model + R"("
-l0 = 0.001
-depth = 1.0
-
-[materials.rubber]
-E = 2.8e6
-nu = 0.45
-rho = 1010.0
-
+  return load_case_text(testing::rubber_case_head("falling", model) + R"(
 [bodies.disk]
 kind = "elastic"
 material = "rubber"
