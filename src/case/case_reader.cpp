@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "src/case/case_overrides.hpp"
+#include "src/case/history_reader.hpp"
 #include "src/case/resolved_case.hpp"
 #include "src/case/shape_reader.hpp"
 #include "src/case/table_reader.hpp"
@@ -202,6 +203,7 @@ void read_loads(TableReader& top, CaseSpec& c) {
                  l.acceleration);
         l.start = r.number_or("start", 0.0);
         r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
+        l.history = read_history(r, top.file());
         c.loads.push_back(l);
       });
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "src/core/load_history.hpp"
 #include "src/core/material.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/region.hpp"
@@ -51,10 +52,10 @@ struct ProbeSpec {
   double at[2] = {0, 0};
 };
 
-// A load switched on at `start` and constant after: a total force (N over
-// the depth) shared equally by a body's particles (type "step"), or an
-// acceleration of every particle of a body (type "acceleration": gravity),
-// which is the force m a on each particle.
+// A load switched on at `start`: a total force (N over the depth) shared
+// equally by a body's particles (type "step"), or an acceleration of every
+// particle of a body (type "acceleration": gravity), which is the force
+// m a on each particle; either times its history's factor.
 struct LoadSpec {
   enum class Type { step, acceleration };
   std::string name;
@@ -63,6 +64,7 @@ struct LoadSpec {
   double force[2] = {0, 0};         // step: N
   double acceleration[2] = {0, 0};  // acceleration: m/s^2
   double start = 0;
+  LoadHistory history;
 };
 
 // Blow-up checks, run every `check_interval` steps.

@@ -56,6 +56,26 @@ std::string region_keys(const Region& region, const char* separator) {
   return fmt::format("{}", fmt::join(keys, separator));
 }
 
+// A load's history keys (none for a step), a table file's points inline.
+std::string history_toml(const LoadHistory& h) {
+  switch (h.kind) {
+    case LoadHistory::Kind::step:
+      return "";
+    case LoadHistory::Kind::ramp:
+      return fmt::format("history = \"ramp\"\nrise_time = {}\n", format_number(h.rise_time));
+    case LoadHistory::Kind::table: {
+      std::vector<std::string> points;
+      for (std::size_t k = 0; k < h.times.size(); ++k)
+        points.push_back(pair(h.times[k], h.factors[k]));
+      return fmt::format("history = \"table\"\ntable = [{}]\n", fmt::join(points, ", "));
+    }
+    case LoadHistory::Kind::friedlander:
+      return fmt::format("history = \"friedlander\"\nduration = {}\ndecay = {}\n",
+                         format_number(h.duration), format_number(h.decay));
+  }
+  return "";
+}
+
 std::string shape_toml(const Shape& shape) {
   std::string out = region_keys(shape.region, "\n") + "\n";
   if (shape.holes.empty()) return out;
@@ -123,6 +143,7 @@ std::string resolved_case_toml(const CaseSpec& c) {
                        step ? "step" : "acceleration",
                        quote(c.bodies[static_cast<std::size_t>(l.body)].name),
                        step ? "force" : "acceleration", pair(v[0], v[1]), format_number(l.start));
+    out += history_toml(l.history);
   }
   for (const auto& probe : c.probes)
     out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),

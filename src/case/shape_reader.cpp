@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "src/case/pairs_file.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -33,44 +33,18 @@ double angle(TableReader& r) {
   return degrees;
 }
 
-std::vector<Point2> inline_vertices(TableReader& r, const TomlValue& v) {
-  const auto bad = [&](const std::string& problem) {
-    r.fail("vertices",
-           fmt::format("expected a list of [x, y] points in m ({}), got {}", problem, describe(v)));
-  };
-  if (!v.is_array()) bad("not a list");
-  std::vector<Point2> out;
-  for (const TomlValue& item : v.as_array()) {
-    if (!item.is_array() || item.as_array().size() != 2) bad("each vertex is two numbers");
-    out.push_back({r.number(item.as_array()[0], "vertices", "a vertex's x in m"),
-                   r.number(item.as_array()[1], "vertices", "a vertex's y in m")});
-  }
-  return out;
-}
-
 PolygonRegion read_polygon(TableReader& r, const std::string& case_file) {
-  const TomlValue* inline_list = r.find("vertices");
-  const TomlValue* file = r.find("vertices_file");
-  if ((inline_list != nullptr) == (file != nullptr))
-    r.fail(inline_list ? "vertices" : "vertices_file",
-           "a polygon takes either vertices = [[x, y], ...] or vertices_file = \"FILE.csv\"");
   PolygonRegion polygon;
-  if (inline_list) {
-    polygon.vertices = inline_vertices(r, *inline_list);
-  } else {
-    const std::string name = r.string("vertices_file", "a CSV file of x, y lines");
-    std::filesystem::path path(name);
-    if (path.is_relative()) path = std::filesystem::path(case_file).parent_path() / path;
-    polygon.vertices = read_vertices_file(path.string(), r.key_path("vertices_file"));
-  }
+  for (const auto& [x, y] : read_pairs(r, "vertices", "vertices_file", "x, y (m)", case_file))
+    polygon.vertices.push_back({x, y});
+  const char* key = r.has("vertices") ? "vertices" : "vertices_file";
   const std::vector<std::string> problems = polygon_problems(polygon);
   if (!problems.empty()) {
     std::string all;
     for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
-    r.fail(inline_list ? "vertices" : "vertices_file",
-           "not a simple polygon: " + all +
-               " (a polygon's edges may meet only at their shared "
-               "vertices)");
+    r.fail(key, "not a simple polygon: " + all +
+                    " (a polygon's edges may meet only at their shared "
+                    "vertices)");
   }
   return polygon;
 }
@@ -120,41 +94,6 @@ Region read_region(TableReader& r, const std::string& case_file) {
   return read_polygon(r, case_file);
 }
 }  // namespace
-
-std::vector<Point2> read_vertices_file(const std::string& path, const std::string& key_path) {
-  std::ifstream in(path);
-  if (!in)
-    throw InputError(fmt::format("{}: {}: cannot read the vertex file (a CSV file of x, y lines)",
-                                 path, key_path));
-  std::vector<Point2> vertices;
-  std::string line;
-  bool header_allowed = true;
-  for (int number = 1; std::getline(in, line); ++number) {
-    std::string text = line;
-    for (char& ch : text)
-      if (ch == ',' || ch == ';' || ch == '\t' || ch == '\r') ch = ' ';
-    const auto first = text.find_first_not_of(' ');
-    if (first == std::string::npos || text[first] == '#') continue;
-    std::istringstream fields(text);
-    double x = 0, y = 0;
-    std::string rest;
-    const bool two = static_cast<bool>(fields >> x >> y) && !(fields >> rest);
-    if (!two || !std::isfinite(x) || !std::isfinite(y)) {
-      // One line of column names may come first.
-      if (header_allowed && std::isalpha(static_cast<unsigned char>(text[first]))) {
-        header_allowed = false;
-        continue;
-      }
-      throw InputError(fmt::format("{}:{}: {}: expected two finite numbers x, y (m), got '{}'",
-                                   path, number, key_path, line));
-    }
-    header_allowed = false;
-    vertices.push_back({x, y});
-  }
-  if (vertices.empty())
-    throw InputError(fmt::format("{}: {}: no vertices in the file", path, key_path));
-  return vertices;
-}
 
 Shape read_shape(TableReader& r, const std::string& case_file) {
   Shape shape;

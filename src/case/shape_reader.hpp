@@ -22,9 +22,4 @@ namespace mpsolid {
 // path (vertex files are found beside it).
 Shape read_shape(TableReader& r, const std::string& case_file);
 
-// The vertices of a CSV file: one "x, y" per line (commas or blanks
-// between), blank lines, lines starting with '#' and one header line of
-// words skipped. Throws InputError naming the file and line.
-std::vector<Point2> read_vertices_file(const std::string& path, const std::string& key_path);
-
 }  // namespace mpsolid

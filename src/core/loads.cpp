@@ -16,9 +16,24 @@ void centroid(const ParticleStore& p, Range range, double& cx, double& cy) {
 
 void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step) {
   for (StepLoad& load : loads) {
-    if (step < load.first_step || load.active) continue;
-    centroid(p, load.range, load.cx_on, load.cy_on);
-    load.active = true;
+    if (step < load.first_step) continue;
+    if (!load.active) {
+      centroid(p, load.range, load.cx_on, load.cy_on);
+      load.active = true;
+      if (!load.history.constant()) {
+        load.cx_last = load.cx_on;
+        load.cy_last = load.cy_on;
+      }
+    } else if (!load.history.constant()) {
+      // The work of the step that just ran: its force times the centroid's move.
+      double cx = 0, cy = 0;
+      centroid(p, load.range, cx, cy);
+      load.work += load.factor * (load.fx * (cx - load.cx_last) + load.fy * (cy - load.cy_last));
+      load.cx_last = cx;
+      load.cy_last = cy;
+    }
+    if (!load.history.constant())
+      load.factor = load.history.factor(static_cast<double>(step) * load.dt - load.start);
   }
 }
 
@@ -26,7 +41,9 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
   for (const StepLoad& load : loads) {
     if (!load.active) continue;
     const double share = 1.0 / static_cast<double>(load.range.size());
-    const double fx = load.fx * share, fy = load.fy * share;
+    // A step's factor is 1: its shares keep the bits of F / N.
+    const double fx = load.history.constant() ? load.fx * share : load.factor * load.fx * share;
+    const double fy = load.history.constant() ? load.fy * share : load.factor * load.fy * share;
     const std::size_t b = std::max(block.begin, load.range.begin);
     const std::size_t e = std::min(block.end, load.range.end);
     for (std::size_t i = b; i < e; ++i) {
@@ -36,14 +53,18 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
   }
 }
 
+double load_work(const ParticleStore& p, const StepLoad& load) {
+  if (!load.active) return 0.0;
+  double cx = 0, cy = 0;
+  centroid(p, load.range, cx, cy);
+  if (load.history.constant()) return load.fx * (cx - load.cx_on) + load.fy * (cy - load.cy_on);
+  // The steps before the last, and the last up to now.
+  return load.work + load.factor * (load.fx * (cx - load.cx_last) + load.fy * (cy - load.cy_last));
+}
+
 double external_work(const ParticleStore& p, const std::vector<StepLoad>& loads) {
   double work = 0.0;
-  for (const StepLoad& load : loads) {
-    if (!load.active) continue;
-    double cx = 0, cy = 0;
-    centroid(p, load.range, cx, cy);
-    work += load.fx * (cx - load.cx_on) + load.fy * (cy - load.cy_on);
-  }
+  for (const StepLoad& load : loads) work += load_work(p, load);
   return work;
 }
 

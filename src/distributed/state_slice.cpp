@@ -17,17 +17,15 @@ void write_fields(RigidBody& b, const double* in) {
   for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
 }
 constexpr std::size_t fields_of(const StepLoad*) {
-  return 3;
+  return 7;
 }
 void read_fields(const StepLoad& l, double* out) {
   out[0] = l.active ? 1.0 : 0.0;
-  out[1] = l.cx_on;
-  out[2] = l.cy_on;
+  for (const double x : {l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work}) *++out = x;
 }
 void write_fields(StepLoad& l, const double* in) {
   l.active = in[0] != 0.0;
-  l.cx_on = in[1];
-  l.cy_on = in[2];
+  for (double* x : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *x = *++in;
 }
 
 bool inside(Range r, Range owned) {

@@ -44,6 +44,10 @@ std::uint64_t content_hash(const Checkpoint& c) {
     h.value(static_cast<std::int8_t>(l.active));
     h.value(l.cx_on);
     h.value(l.cy_on);
+    // A step load keeps these at their defaults (so checkpoints written
+    // before loads could vary keep their hashes).
+    if (l.factor != 1 || l.cx_last != 0 || l.cy_last != 0 || l.work != 0)
+      for (const double v : {l.factor, l.cx_last, l.cy_last, l.work}) h.value(v);
   }
   return h.value();
 }
@@ -75,7 +79,8 @@ Checkpoint capture_state(const SolverState& state) {
   }
   for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
-  for (const StepLoad& l : state.loads) c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on});
+  for (const StepLoad& l : state.loads)
+    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work});
   return c;
 }
 
@@ -133,6 +138,10 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     s.loads[l].active = c.loads[l].active;
     s.loads[l].cx_on = c.loads[l].cx_on;
     s.loads[l].cy_on = c.loads[l].cy_on;
+    s.loads[l].factor = c.loads[l].factor;
+    s.loads[l].cx_last = c.loads[l].cx_last;
+    s.loads[l].cy_last = c.loads[l].cy_last;
+    s.loads[l].work = c.loads[l].work;
   }
   s.step = c.step;
   s.peak_work = c.peak_work;
@@ -180,15 +189,17 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     const h5::Group loads = file.create_group("loads");
     std::vector<std::string> load_names;
     std::vector<std::int8_t> active;
-    std::vector<double> centroid;
+    std::vector<double> centroid, varying;
     for (const auto& l : c.loads) {
       load_names.push_back(l.name);
       active.push_back(l.active ? 1 : 0);
       centroid.insert(centroid.end(), {l.cx_on, l.cy_on});
+      varying.insert(varying.end(), {l.factor, l.cx_last, l.cy_last, l.work});
     }
     loads.write_strings("names", load_names);
     loads.write("active", active);
     loads.write("centroid_on", centroid, 2);
+    loads.write("varying", varying, 4);
     file.close();
   }
   const std::uintmax_t bytes = std::filesystem::file_size(staged);
@@ -244,8 +255,15 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     const std::vector<std::string> load_names = loads.read_strings("names");
     const std::vector<std::int8_t> active = loads.read<std::int8_t>("active", load_names.size());
     const std::vector<double> centroid = loads.read<double>("centroid_on", load_names.size(), 2);
-    for (std::size_t l = 0; l < load_names.size(); ++l)
-      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1]});
+    // Checkpoints written before loads could vary hold step loads only.
+    const std::vector<double> varying = loads.has("varying")
+                                            ? loads.read<double>("varying", load_names.size(), 4)
+                                            : std::vector<double>(4 * load_names.size(), 0.0);
+    for (std::size_t l = 0; l < load_names.size(); ++l) {
+      const double* v = varying.data() + 4 * l;
+      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1],
+                         loads.has("varying") ? v[0] : 1.0, v[1], v[2], v[3]});
+    }
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));
   }

@@ -35,6 +35,9 @@ struct LoadState {
   std::string name;
   bool active = false;
   double cx_on = 0, cy_on = 0;
+  // A varying load's (src/core/loads.hpp): factor, centroid at the last
+  // step's start, work before it.
+  double factor = 1, cx_last = 0, cy_last = 0, work = 0;
 };
 
 struct Checkpoint {

@@ -23,6 +23,10 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
         cols.push_back(b.name + suffix);
   for (const ProbeSpec& probe : spec.probes)
     for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
+  // A varying load's factor (of the step that ran last) and its work.
+  for (const StepLoad& l : state.loads)
+    if (!l.history.constant())
+      for (const char* suffix : {".factor", ".work"}) cols.push_back("load." + l.name + suffix);
   return cols;
 }
 
@@ -46,6 +50,8 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
     row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
   }
   for (const std::size_t i : state.probes) row.insert(row.end(), {p.x[i], p.y[i]});
+  for (const StepLoad& l : state.loads)
+    if (!l.history.constant()) row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});
   return row;
 }
 

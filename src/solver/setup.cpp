@@ -99,6 +99,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     StepLoad load;
     load.name = l.name;
     load.range = s.body_ranges[static_cast<std::size_t>(l.body)];
+    load.history = l.history;
+    load.start = l.start;
     if (l.type == LoadSpec::Type::step) {
       load.fx = l.force[0];
       load.fy = l.force[1];
@@ -114,9 +116,11 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 }
 
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
-  for (std::size_t k = 0; k < spec.loads.size(); ++k)
+  for (std::size_t k = 0; k < spec.loads.size(); ++k) {
     s.loads[k].first_step =
         static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
+    s.loads[k].dt = spec.dt;
+  }
 }
 
 }  // namespace mpsolid

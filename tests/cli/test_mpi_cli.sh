@@ -11,6 +11,7 @@
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
 #    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
+#  - a blast-wave load at 2 ranks, and resumed at 3 mid-wave, too;
 #  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
 #    resumes to the serial bits;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
@@ -105,6 +106,20 @@ fi
 # Ranks x threads: 2 x 2.
 mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2
 [[ $rc -eq 0 ]] && same "2 ranks x 2 threads" "$TMP/threads2" || fail "2 ranks x 2 threads: exit $rc"
+
+# A varying load (a blast wave: its factor, last centroid and work travel
+# with the plate's rank) at 2 ranks, and resumed at 3 mid-wave.
+BLAST=(--set 'loads.shock.history="friedlander"' --set loads.shock.duration=6e-5
+  --set loads.shock.decay=1.5)
+"$BIN" run "$CASE" "${SETS[@]}" "${BLAST[@]}" --set time.end=1e-4 --out "$TMP/blast_serial" \
+  --threads 1 >/dev/null 2>&1 </dev/null || fail "the serial blast-wave run failed"
+mpi 2 blast run "$CASE" "${SETS[@]}" "${BLAST[@]}" --set time.end=1e-4 --out "$TMP/blast"
+[[ $rc -eq 0 ]] && same "2 ranks, blast wave" "$TMP/blast" "$TMP/blast_serial" ||
+  fail "2 ranks, blast wave: exit $rc"
+mpi 2 blast_half run "$CASE" "${SETS[@]}" "${BLAST[@]}" --set time.end=5e-5 --out "$TMP/blast_half"
+mpi 3 blast_resume resume "$TMP/blast_half" --set time.end=1e-4
+[[ $rc -eq 0 ]] && same "blast wave at 2 ranks, resumed at 3" "$TMP/blast_half" "$TMP/blast_serial" ||
+  fail "blast wave resumed at 3 ranks: exit $rc"
 
 # Half the run at 2 ranks, the rest at 1 and at 3.
 mpi 2 half run "$CASE" "${SETS[@]}" --set time.end=1e-4 --out "$TMP/half"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace mpsolid::testing {
@@ -15,6 +16,14 @@ std::string source_path(const std::string& relative) {
 std::string rubber_case_head(const std::string& name, const std::string& model) {
   return "name = \"" + name + "\"\nmodel = \"" + model +
          "\"\nl0 = 0.001\ndepth = 1.0\n\n[materials.rubber]\nE = 2.8e6\nnu = 0.45\nrho = 1010.0\n";
+}
+
+std::string write_temp_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(text.c_str(), f);
+  std::fclose(f);
+  return path;
 }
 
 CaseSpec rod_case(const std::vector<std::string>& overrides) {

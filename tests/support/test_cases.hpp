@@ -15,6 +15,10 @@ std::string source_path(const std::string& relative);
 // the bodies, loads and [time] follow.
 std::string rubber_case_head(const std::string& name, const std::string& model);
 
+// Writes `text` to a file called `name` in GoogleTest's temporary folder and
+// returns its path.
+std::string write_temp_file(const std::string& name, const std::string& text);
+
 // cases/shock_rod.toml with overrides.
 CaseSpec rod_case(const std::vector<std::string>& overrides = {});
 

@@ -579,20 +579,15 @@ TEST(CaseErrors, AccelerationLoadsTakeAnAcceleration) {
 }
 
 TEST(CaseErrors, VertexFileProblemsNameTheLine) {
-  const std::string dir = ::testing::TempDir();
-  const auto write = [&](const std::string& name, const std::string& text) {
-    std::FILE* f = std::fopen((dir + "/" + name).c_str(), "w");
-    std::fputs(text.c_str(), f);
-    std::fclose(f);
-    return dir + "/" + name;
-  };
-  const std::string good = write("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");
+  const std::string good =
+      testing::write_temp_file("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");
   EXPECT_FALSE(
       error_of(with_body("shape = \"polygon\"\nvertices_file = \"" + good + "\"")).has_value());
-  const std::string bad = write("bad.csv", "x,y\n0.3,0\n0.4,zero\n0.35,0.05\n");
+  const std::string bad = testing::write_temp_file("bad.csv", "x,y\n0.3,0\n0.4,zero\n0.35,0.05\n");
   EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices_file = \"" + bad + "\""),
                      {bad + ":3:", "bodies.extra.vertices_file", "two finite numbers", "0.4,zero"});
-  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices_file = \"" + dir + "/missing.csv\""),
+  EXPECT_INPUT_ERROR(with_body("shape = \"polygon\"\nvertices_file = \"" + ::testing::TempDir() +
+                               "/missing.csv\""),
                      {"missing.csv", "bodies.extra.vertices_file", "cannot read"});
 }
 

@@ -59,6 +59,12 @@ void expect_same_state(Simulation& a, Simulation& b) {
     EXPECT_EQ(a.state().loads[k].active, b.state().loads[k].active);
     EXPECT_TRUE(same_bits(a.state().loads[k].cx_on, b.state().loads[k].cx_on));
     EXPECT_TRUE(same_bits(a.state().loads[k].cy_on, b.state().loads[k].cy_on));
+    const StepLoad &u = a.state().loads[k], &v = b.state().loads[k];
+    for (auto [p, q] : {std::pair{u.factor, v.factor},
+                        {u.cx_last, v.cx_last},
+                        {u.cy_last, v.cy_last},
+                        {u.work, v.work}})
+      EXPECT_TRUE(same_bits(p, q)) << u.name;
   }
   const Diagnostics da = a.diagnostics(), db = b.diagnostics();
   EXPECT_TRUE(same_bits(da.kinetic_energy, db.kinetic_energy));
@@ -160,6 +166,16 @@ TEST(Checkpoint, ResumedRunIsBitIdenticalAtTwoThreads) {
 TEST(Checkpoint, ResumeAcrossALoadSwitchOn) {
   expect_resume_is_seamless({"loads.shock.start=1.5e-6"}, 100, 100, 2);
   expect_resume_is_seamless({"loads.shock.start=0.5e-6"}, 100, 100, 1);
+}
+
+// A varying load's factor, last centroid and work are part of the state: a
+// checkpoint in the middle of a ramp and of a blast wave.
+TEST(Checkpoint, ResumeInTheMiddleOfARampAndABlastWave) {
+  expect_resume_is_seamless({"loads.shock.history=\"ramp\"", "loads.shock.rise_time=2e-6"}, 100,
+                            100, 2);
+  expect_resume_is_seamless({"loads.shock.history=\"friedlander\"", "loads.shock.duration=1e-6",
+                             "loads.shock.decay=1.5", "loads.shock.start=0.3e-6"},
+                            100, 100, 1);
 }
 
 TEST(Checkpoint, RefusesAnotherBondTable) {

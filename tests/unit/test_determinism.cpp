@@ -96,6 +96,9 @@ void expect_batches_same_bits(const CaseSpec& spec) {
       for (std::size_t k = 0; k < a.loads.size(); ++k) {
         EXPECT_EQ(a.loads[k].active, b.loads[k].active);
         EXPECT_EQ(a.loads[k].cx_on, b.loads[k].cx_on);
+        EXPECT_EQ(a.loads[k].factor, b.loads[k].factor);
+        EXPECT_EQ(a.loads[k].work, b.loads[k].work);
+        EXPECT_EQ(a.loads[k].cx_last, b.loads[k].cx_last);
       }
     }
   }
@@ -108,6 +111,10 @@ TEST(Determinism, BatchedStepsEqualSingleStepsAt1And2And3Threads) {
     // The load switches on at step 12, inside the first batch.
     expect_batches_same_bits(
         testing::rod_case({"model=" + model, "l0=0.004", "loads.shock.start=1.2e-7"}));
+    // A ramp: the factor and the work change every step.
+    expect_batches_same_bits(
+        testing::rod_case({"model=" + model, "l0=0.004", "loads.shock.history=\"ramp\"",
+                           "loads.shock.rise_time=3e-7"}));
     expect_batches_same_bits(testing::free_block_case(4, 4, true, 1e-7, model));
     // Holds are cleared block by block: the same bits too.
     expect_batches_same_bits(testing::rod_case(
