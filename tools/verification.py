@@ -239,6 +239,9 @@ ANALYSES = {"plate": (plate_answer, check_plate), "wave": (wave_answer, check_wa
 
 # ---- docs ------------------------------------------------------------------
 
+KEPT_FROM = "## Shapes and loads"
+
+
 def write_docs(path, results, missing):
     def rows(kind, sub):
         return [(run, a) for (k, s), run, a, ok, text in results if k == kind and s == sub]
@@ -248,6 +251,7 @@ def write_docs(path, results, missing):
            "at their case files' safety 0.5, the strip and the spinning plate at the default 0.4).",
            "Errors are relative to theory. Wall times (with the run's thread count) are single runs on",
            "a 2-core machine, some of them made while other jobs shared it: read them as a guide to cost.",
+           "The last section, \"Shapes and loads\", is what the unit tests check; this tool keeps it.",
            ""]
     for case, title in [("oscillating_plate_linear", "Cantilever plate, V_f = 0.01 (linear)"),
                         ("oscillating_plate", "Cantilever plate, V_f = 0.05 (nonlinear)")]:
@@ -299,9 +303,16 @@ def write_docs(path, results, missing):
     if missing:
         out += ["## Not run yet", "", "`tools/verification.py` (without `--cached-only`) runs these:", ""]
         out += [f"- {tag}" for tag in missing] + [""]
+    # Sections the unit tests check (written by hand, from KEPT_FROM on) stay.
+    kept = ""
+    if os.path.exists(path):
+        with open(path) as f:
+            old = f.read()
+        if KEPT_FROM in old:
+            kept = old[old.index(KEPT_FROM):]
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path, "w") as f:
-        f.write("\n".join(out))
+        f.write("\n".join(out) + (("\n" if out[-1] else "") + kept.lstrip("\n") if kept else ""))
 
 
 def main():
