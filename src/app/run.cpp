@@ -26,6 +26,7 @@
 #include "src/io/run_report.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/simulation.hpp"
+#include "src/solver/time_step_choice.hpp"
 
 namespace mpsolid {
 
@@ -347,6 +348,9 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   };
   if (std::filesystem::is_directory(options.out_dir)) lock_and_check();
   Simulation sim(spec, options.followers);
+  // Before the first step, so a dt that cannot run is named with its fix.
+  if (const std::string w = fixed_time_step_warning(sim.spec(), sim.state()); !w.empty())
+    fmt::print(stderr, "mpsolid: warning: {}\n", w);
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {

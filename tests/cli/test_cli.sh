@@ -293,6 +293,20 @@ if ! grep -q "completed" "$TMP/good.out"; then
   fail "good: the summary does not say the run completed"
 fi
 
+# A given dt above the model's stable step: a warning before the first step
+# naming the estimate and time.dt = "auto"; the run then stops unstable
+# (exit 3) with its last good frame.
+"$BIN" run "$CASE" --out "$TMP/too_big_dt" --set time.dt=2e-5 --set time.end=2e-3 \
+  >"$TMP/too_big_dt.out" 2>"$TMP/too_big_dt.err" </dev/null
+rc=$?
+if [[ $rc -eq 3 ]] && grep -q '^mpsolid: warning: .*time.dt = 2e-05 s is above the stable step' \
+  "$TMP/too_big_dt.err" && grep -qF 'time.dt = "auto"' "$TMP/too_big_dt.err" &&
+  [[ "$(head -n 1 "$TMP/too_big_dt.err")" == "mpsolid: warning: "* ]]; then
+  ok "a dt above the stable step: warned before the first step, then stopped (exit 3)"
+else
+  fail "a dt above the stable step: exit $rc, stderr: $(head -c 600 "$TMP/too_big_dt.err")"
+fi
+
 # ---- (d) the resolved case reproduces the run -----------------------------------
 
 AGAIN=$TMP/again
