@@ -116,7 +116,7 @@ const char* region_kind(const Region& r) {
 bool region_contains(const Region& region, Point2 p) {
   return std::visit(
       Overloaded{[&](const RectangleRegion& r) {
-                   // Unturned, the test the lattice fill has always made.
+                   // Half open, turned about the centre when it has an angle.
                    const Point2 q =
                        r.angle_deg == 0 ? p : unturn(p, rectangle_center(r), r.angle_deg);
                    return q.x >= r.x[0] && q.x < r.x[1] && q.y >= r.y[0] && q.y < r.y[1];
