@@ -63,15 +63,18 @@ BgPolygon to_bg(const std::vector<Point2>& outline) {
 // point-in-polygon strategies compute an edge's side from its direction,
 // which does not split a shared slanted edge's sites exactly; it does the
 // rest: validity, areas, containment, overlap.)
-bool polygon_contains(const PolygonRegion& r, Point2 p) {
-  const std::vector<Point2>& v = r.vertices;
-  bool inside = false;
+// Calls crossing(x) for each edge the ray at height y crosses.
+template <class Crossing>
+void for_each_crossing(const std::vector<Point2>& v, double y, Crossing&& crossing) {
   for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
     const Point2 a = v[j].y < v[i].y ? v[j] : v[i], b = v[j].y < v[i].y ? v[i] : v[j];
-    if (!(a.y <= p.y && p.y < b.y)) continue;
-    const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
-    if (p.x < x) inside = !inside;
+    if (a.y <= y && y < b.y) crossing(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
   }
+}
+
+bool polygon_contains(const PolygonRegion& r, Point2 p) {
+  bool inside = false;
+  for_each_crossing(r.vertices, p.y, [&](double x) { inside = inside != (p.x < x); });
   return inside;
 }
 
@@ -223,7 +226,7 @@ class ShapeTest {
     add(shape.region);
     for (const Region& hole : shape.holes) add(hole);
   }
-  bool contains(std::int64_t k, std::int64_t m) const {
+  bool contains(std::int64_t k, std::int64_t m) {
     const Point2 p{lattice_coordinate(k, l0_), lattice_coordinate(m, l0_)};
     if (!inside(0, k, m, p)) return false;
     for (std::size_t h = 1; h < tests_.size(); ++h)
@@ -235,6 +238,11 @@ class ShapeTest {
   struct Test {
     LatticeSpan kx, ky;  // an unturned rectangle's
     bool spans = false;
+    // A polygon's crossings with the row `row`, sorted: a site is inside
+    // when an odd number lie beyond it (polygon_contains, row by row).
+    std::int64_t row = 0;
+    std::vector<double> crossings;
+    bool has_row = false;
   };
   void add(const Region& r) {
     Test t;
@@ -245,10 +253,22 @@ class ShapeTest {
     }
     tests_.push_back(t);
   }
-  bool inside(std::size_t h, std::int64_t k, std::int64_t m, Point2 p) const {
-    const Test& t = tests_[h];
+  bool inside(std::size_t h, std::int64_t k, std::int64_t m, Point2 p) {
+    Test& t = tests_[h];
     if (t.spans) return k >= t.kx.first && k <= t.kx.last && m >= t.ky.first && m <= t.ky.last;
-    return region_contains(h == 0 ? shape_.region : shape_.holes[h - 1], p);
+    const Region& r = h == 0 ? shape_.region : shape_.holes[h - 1];
+    const auto* polygon = std::get_if<PolygonRegion>(&r);
+    if (!polygon) return region_contains(r, p);
+    if (!t.has_row || t.row != m) {
+      t.crossings.clear();
+      for_each_crossing(polygon->vertices, p.y, [&](double x) { t.crossings.push_back(x); });
+      std::sort(t.crossings.begin(), t.crossings.end());
+      t.row = m;
+      t.has_row = true;
+    }
+    const auto beyond =
+        t.crossings.end() - std::upper_bound(t.crossings.begin(), t.crossings.end(), p.x);
+    return beyond % 2 == 1;
   }
   const Shape& shape_;
   double l0_;
@@ -262,7 +282,7 @@ void for_each_site(const Shape& shape, double l0, Site&& site) {
   const LatticeSpan kx = lattice_span(b.lo.x, b.hi.x, l0), ky = lattice_span(b.lo.y, b.hi.y, l0);
   // One site more on each side than the box's half-open span: the region
   // decides its own edges.
-  const ShapeTest test(shape, l0);
+  ShapeTest test(shape, l0);
   for (std::int64_t m = ky.first - 1; m <= ky.last + 1; ++m)
     for (std::int64_t k = kx.first - 1; k <= kx.last + 1; ++k)
       if (test.contains(k, m)) site(lattice_coordinate(k, l0), lattice_coordinate(m, l0));
@@ -284,7 +304,7 @@ std::int64_t count_shape_sites(const Shape& shape, double l0) {
 bool shape_has_site_near(const Shape& shape, Point2 p, double l0, double distance) {
   const LatticeSpan kx = lattice_span(p.x - distance, p.x + distance, l0);
   const LatticeSpan ky = lattice_span(p.y - distance, p.y + distance, l0);
-  const ShapeTest test(shape, l0);
+  ShapeTest test(shape, l0);
   for (std::int64_t m = ky.first; m <= ky.last; ++m)
     for (std::int64_t k = kx.first; k <= kx.last; ++k) {
       const double dx = lattice_coordinate(k, l0) - p.x, dy = lattice_coordinate(m, l0) - p.y;

@@ -105,6 +105,27 @@ TEST(Region, ConcavePolygonIsTheUnionOfItsPieces) {
   EXPECT_NEAR(region_area(ell), 0.02 * 0.005 + 0.005 * 0.015, 1e-15);
 }
 
+TEST(Region, FillRowByRowAgreesWithThePointTest) {
+  // A star (concave, slanted edges through many rows) with a polygon hole:
+  // the fill's crossings per row against region_contains at every site.
+  const double l0 = 0.0005;
+  PolygonRegion star, notch{{{-0.002, -0.001}, {0.003, -0.0015}, {0.001, 0.002}}};
+  for (int k = 0; k < 14; ++k) {
+    const double t = 2 * std::numbers::pi * k / 14, r = k % 2 ? 0.006 : 0.015;
+    star.vertices.push_back({0.0003 + r * std::cos(t), -0.0002 + r * std::sin(t)});
+  }
+  const Shape shape = shape_of(star, {notch});
+  const auto filled = as_set(fill_shape(shape, l0));
+  std::set<std::pair<double, double>> tested;
+  for (int m = -40; m < 40; ++m)
+    for (int k = -40; k < 40; ++k) {
+      const Point2 p{(k + 0.5) * l0, (m + 0.5) * l0};
+      if (region_contains(star, p) && !region_contains(notch, p)) tested.insert({p.x, p.y});
+    }
+  EXPECT_EQ(filled, tested);
+  EXPECT_GT(filled.size(), 500u);
+}
+
 TEST(Region, HolesRemoveTheirSites) {
   const double l0 = 0.001;
   const RectangleRegion plate = rectangle(0, 0.03, 0, 0.02),
