@@ -263,6 +263,29 @@ class CaseValues(unittest.TestCase):
         with self.assertRaises(mpsolid.InputError):
             case.set("time.end", float("inf"))  # valid TOML, refused by the reader
 
+    def test_shapes_and_histories_from_python(self):
+        # A disk with a hole, a polygon, and a ramped load, all set as Python values.
+        case = coarse_case()
+        case.set("bodies.ball", {"kind": "elastic", "material": "rubber", "shape": "circle",
+                                 "center": [0.2, 0.0], "radius": 0.012,
+                                 "holes": [{"shape": "circle", "center": [0.2, 0.0],
+                                            "radius": 0.004}]})
+        case.set("bodies.wedge", {"kind": "rigid", "material": "rubber", "shape": "polygon",
+                                  "vertices": [(0.3, 0.0), (0.34, 0.0), (0.3, 0.03)]})
+        case.set("loads.shock", {"type": "step", "body": "plate", "force": [11200.0, 0.0],
+                                 "history": "ramp", "rise_time": 1e-6})
+        resolved = case.resolved()
+        self.assertEqual(resolved["bodies"]["ball"]["shape"], "circle")
+        self.assertEqual(resolved["bodies"]["ball"]["holes"][0]["radius"], 0.004)
+        self.assertEqual(resolved["bodies"]["wedge"]["vertices"][1], [0.34, 0.0])
+        self.assertEqual(resolved["loads"]["shock"]["history"], "ramp")
+        plain = mpsolid.Simulation(coarse_case(), threads=1)
+        sim = mpsolid.Simulation(case, threads=1)
+        self.assertGreater(sim.particle_count, plain.particle_count)
+        with self.assertRaises(mpsolid.InputError):  # a bow tie
+            case.copy().set("bodies.wedge.vertices", [(0.3, 0.0), (0.34, 0.03), (0.34, 0.0),
+                                                      (0.3, 0.03)]).resolved()
+
     def test_copy_is_independent(self):
         case = coarse_case()
         other = case.copy().set("l0", 0.002)
