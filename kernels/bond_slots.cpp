@@ -18,20 +18,17 @@ constexpr std::size_t kSpanGap = 64;
 // The direction of the bond (owner, owner + offset), or none.
 class DirectionIndex {
  public:
-  void add(const BondSlots::Direction& d, std::size_t index) { of_[d.offset].push_back(index); }
-  const BondSlots::Direction* find(const BondSlots& s, std::size_t offset,
-                                   std::size_t owner) const {
+  void add(const BondSlots::Direction& d) { of_[d.offset].push_back(d); }
+  const BondSlots::Direction* find(std::size_t offset, std::size_t owner) const {
     const auto at = of_.find(offset);
     if (at == of_.end()) return nullptr;
-    for (const std::size_t k : at->second) {
-      const BondSlots::Direction& d = s.directions[k];
+    for (const BondSlots::Direction& d : at->second)
       if (owner >= d.first && owner < d.last) return &d;
-    }
     return nullptr;
   }
 
  private:
-  std::map<std::size_t, std::vector<std::size_t>> of_;
+  std::map<std::size_t, std::vector<BondSlots::Direction>> of_;
 };
 
 // The dense directions: each offset's owners cut into spans at gaps wider
@@ -55,7 +52,7 @@ DirectionIndex choose_directions(const BondTable& bonds, BondSlots& s) {
       if (span.count >= kMinDirectionBonds &&
           span.count * kDirectionShare >= span.last - span.first) {
         const BondSlots::Direction d{offset, span.first, span.last, s.dense_slots};
-        index.add(d, s.directions.size());
+        index.add(d);
         s.directions.push_back(d);
         s.dense_slots += span.last - span.first;
       }
@@ -76,7 +73,7 @@ BondSlots make_bond_slots(const BondTable& bonds) {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       if (j < i) continue;
-      if (const BondSlots::Direction* d = directions.find(s, j - i, i)) {
+      if (const BondSlots::Direction* d = directions.find(j - i, i)) {
         s.entry_slot[b] = static_cast<std::uint32_t>(d->slot(i));
       } else {
         s.entry_slot[b] = static_cast<std::uint32_t>(s.dense_slots + s.extra_owner.size());
@@ -88,7 +85,7 @@ BondSlots make_bond_slots(const BondTable& bonds) {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       if (j > i) continue;
-      if (const BondSlots::Direction* d = directions.find(s, i - j, j)) {
+      if (const BondSlots::Direction* d = directions.find(i - j, j)) {
         s.entry_slot[b] = static_cast<std::uint32_t>(d->slot(j));
         continue;
       }

@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "src/case/pairs_file.hpp"
 #include "src/core/types.hpp"

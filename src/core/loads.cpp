@@ -14,17 +14,18 @@ void centroid(const ParticleStore& p, Range range, double& cx, double& cy) {
   cy = sy / static_cast<double>(range.size());
 }
 
-void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step) {
+void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
+                    double dt) {
   for (StepLoad& load : loads) {
     if (step < load.first_step) continue;
+    const bool varying = !load.history.constant();
     if (!load.active) {
       centroid(p, load.range, load.cx_on, load.cy_on);
       load.active = true;
-      if (!load.history.constant()) {
-        load.cx_last = load.cx_on;
-        load.cy_last = load.cy_on;
-      }
-    } else if (!load.history.constant()) {
+      if (!varying) continue;
+      load.cx_last = load.cx_on;
+      load.cy_last = load.cy_on;
+    } else if (varying) {
       // The work of the step that just ran: its force times the centroid's move.
       double cx = 0, cy = 0;
       centroid(p, load.range, cx, cy);
@@ -32,8 +33,7 @@ void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::i
       load.cx_last = cx;
       load.cy_last = cy;
     }
-    if (!load.history.constant())
-      load.factor = load.history.factor(static_cast<double>(step) * load.dt - load.start);
+    if (varying) load.factor = load.history.factor(static_cast<double>(step) * dt - load.start);
   }
 }
 
@@ -41,9 +41,8 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
   for (const StepLoad& load : loads) {
     if (!load.active) continue;
     const double share = 1.0 / static_cast<double>(load.range.size());
-    // A step's factor is 1: its shares keep the bits of F / N.
-    const double fx = load.history.constant() ? load.fx * share : load.factor * load.fx * share;
-    const double fy = load.history.constant() ? load.fy * share : load.factor * load.fy * share;
+    // A step's factor stays 1, and 1 x F is F: its shares keep the bits of F / N.
+    const double fx = load.factor * load.fx * share, fy = load.factor * load.fy * share;
     const std::size_t b = std::max(block.begin, load.range.begin);
     const std::size_t e = std::min(block.end, load.range.end);
     for (std::size_t i = b; i < e; ++i) {

@@ -16,7 +16,7 @@ struct StepLoad {
   Range range;                  // the loaded body's particles
   double fx = 0, fy = 0;        // total force (N) at a factor of 1
   LoadHistory history;          // the factor over time since `start`
-  double start = 0, dt = 0;     // s: the step k begins at k dt
+  double start = 0;             // s: when it switches on
   std::int64_t first_step = 0;  // first step k with k dt >= start
   // Centroid of the body at first_step, once reached. For a constant force,
   // the work telescopes: W = F . (c(now) - c(first_step)), exactly, because
@@ -33,7 +33,8 @@ struct StepLoad {
 // At the start of `step` (with its start-of-step positions): switches on
 // the loads that start at it, recording the body's centroid, and for the
 // varying ones adds the previous step's work and takes this step's factor.
-void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step);
+void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
+                    double dt);
 
 // Adds each active load's share to the forces of the particles in `block`
 // (after the force pass), loads in order. Serial: the step calls it per block.

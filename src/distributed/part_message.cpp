@@ -134,8 +134,8 @@ void put_load(Writer& w, const StepLoad& l) {
   w.put(l.range);
   const LoadHistory& h = l.history;
   for (const double v : {l.fx, l.fy, static_cast<double>(h.kind), h.rise_time, h.duration, h.decay,
-                         l.start, l.dt, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0,
-                         l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work})
+                         l.start, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on,
+                         l.cy_on, l.factor, l.cx_last, l.cy_last, l.work})
     w.put(v);
   w.put(h.times);
   w.put(h.factors);
@@ -148,7 +148,7 @@ StepLoad get_load(Reader& r) {
   l.fx = r.get();
   l.fy = r.get();
   h.kind = static_cast<LoadHistory::Kind>(r.get_as<int>());
-  for (double* v : {&h.rise_time, &h.duration, &h.decay, &l.start, &l.dt}) *v = r.get();
+  for (double* v : {&h.rise_time, &h.duration, &h.decay, &l.start}) *v = r.get();
   l.first_step = r.get_as<std::int64_t>();
   l.active = r.get() != 0.0;
   for (double* v : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *v = r.get();

@@ -256,13 +256,16 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     const std::vector<std::int8_t> active = loads.read<std::int8_t>("active", load_names.size());
     const std::vector<double> centroid = loads.read<double>("centroid_on", load_names.size(), 2);
     // Checkpoints written before loads could vary hold step loads only.
-    const std::vector<double> varying = loads.has("varying")
-                                            ? loads.read<double>("varying", load_names.size(), 4)
-                                            : std::vector<double>(4 * load_names.size(), 0.0);
+    std::vector<double> varying;
+    if (loads.has("varying"))
+      varying = loads.read<double>("varying", load_names.size(), 4);
+    else  // factor 1, nothing since
+      for (std::size_t l = 0; l < load_names.size(); ++l)
+        varying.insert(varying.end(), {1.0, 0.0, 0.0, 0.0});
     for (std::size_t l = 0; l < load_names.size(); ++l) {
       const double* v = varying.data() + 4 * l;
-      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1],
-                         loads.has("varying") ? v[0] : 1.0, v[1], v[2], v[3]});
+      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1], v[0],
+                         v[1], v[2], v[3]});
     }
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));

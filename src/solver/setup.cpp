@@ -116,11 +116,9 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 }
 
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
-  for (std::size_t k = 0; k < spec.loads.size(); ++k) {
+  for (std::size_t k = 0; k < spec.loads.size(); ++k)
     s.loads[k].first_step =
         static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
-    s.loads[k].dt = spec.dt;
-  }
 }
 
 }  // namespace mpsolid

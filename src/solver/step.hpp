@@ -153,7 +153,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     // Positions stay put until the force pass, and the switch-on is read
     // only after the strain pass's closing barrier.
     if (place.leads() && !s.loads.empty())
-      serial_section([&] { activate_loads(p, s.loads, step); });
+      serial_section([&] { activate_loads(p, s.loads, step, dt); });
     model.strain_pass(p, s.bonds, place.own(p), place.halo());
   }
   if constexpr (Model::forces_read_positions) {
