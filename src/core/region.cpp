@@ -3,6 +3,9 @@
 // Boost.Geometry's rescaling policy trips GCC's maybe-uninitialized analysis
 // when its set operations are inlined here (a known false positive).
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+// Boost 1.74's math constants include a header it has since deprecated; the
+// note it prints on every build says nothing about this code.
+#define BOOST_ALLOW_DEPRECATED_HEADERS
 
 #include <algorithm>
 #include <boost/geometry.hpp>
