@@ -13,6 +13,7 @@
 #include "src/case/case_overrides.hpp"
 #include "src/case/history_reader.hpp"
 #include "src/case/resolved_case.hpp"
+#include "src/case/selection_reader.hpp"
 #include "src/case/shape_reader.hpp"
 #include "src/case/table_reader.hpp"
 
@@ -182,25 +183,34 @@ void read_loads(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("loads");
   if (!table) return;
   for_each_named_table(
-      *table, "loads", top.file(), "type, body, force or acceleration, start",
+      *table, "loads", top.file(), "type, body, force, acceleration or pressure, start",
       [&](const std::string& name, const TomlValue&, TableReader& r) {
         LoadSpec l;
         l.name = name;
         const std::string type = r.string_or("type", "step");
-        if (type != "step" && type != "acceleration")
-          r.fail("type", fmt::format("unknown load type '{}' (allowed: step, acceleration)", type));
-        l.type = type == "step" ? LoadSpec::Type::step : LoadSpec::Type::acceleration;
+        if (type != "step" && type != "acceleration" && type != "pressure")
+          r.fail(
+              "type",
+              fmt::format("unknown load type '{}' (allowed: step, acceleration, pressure)", type));
+        l.type = type == "step"           ? LoadSpec::Type::step
+                 : type == "acceleration" ? LoadSpec::Type::acceleration
+                                          : LoadSpec::Type::pressure;
         l.body = index_by_name(r, "body", "the name of a [bodies.NAME] table", c.bodies);
         const BodySpec& body = c.bodies[static_cast<std::size_t>(l.body)];
         if (body.kind == Kind::wall)
           r.fail("body",
                  fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing",
                              body.name));
-        if (l.type == LoadSpec::Type::step)
+        if (l.type == LoadSpec::Type::step) {
           r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
-        else
+        } else if (l.type == LoadSpec::Type::pressure) {
+          l.pressure = r.number("pressure", "the pressure in Pa (positive pushes inwards)");
+          r.range_check("pressure", l.pressure, std::isfinite(l.pressure), "a finite number of Pa");
+          l.surface = read_selection(r, body, c.l0);
+        } else {
           r.pair("acceleration", "the acceleration [ax, ay] in m/s^2 of every particle",
                  l.acceleration);
+        }
         l.start = r.number_or("start", 0.0);
         r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
         l.history = read_history(r, top.file());

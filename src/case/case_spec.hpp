@@ -10,6 +10,7 @@
 #include "src/core/material.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/region.hpp"
+#include "src/core/surface.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -57,12 +58,14 @@ struct ProbeSpec {
 // particle of a body (type "acceleration": gravity), which is the force
 // m a on each particle; either times its history's factor.
 struct LoadSpec {
-  enum class Type { step, acceleration };
+  enum class Type { step, acceleration, pressure };
   std::string name;
   Type type = Type::step;
   int body = 0;                     // index into CaseSpec::bodies
   double force[2] = {0, 0};         // step: N
   double acceleration[2] = {0, 0};  // acceleration: m/s^2
+  double pressure = 0;              // pressure: Pa, on `surface` (positive pushes inwards)
+  SurfaceSelection surface;
   double start = 0;
   LoadHistory history;
 };

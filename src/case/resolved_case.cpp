@@ -6,6 +6,7 @@
 #include <toml.hpp>
 
 #include "src/case/case_overrides.hpp"
+#include "src/core/region_boundary.hpp"
 
 namespace mpsolid {
 
@@ -102,6 +103,30 @@ std::string body_toml(const CaseSpec& c, const BodySpec& b) {
   return out;
 }
 
+const char* load_type(LoadSpec::Type type) {
+  return type == LoadSpec::Type::step           ? "step"
+         : type == LoadSpec::Type::acceleration ? "acceleration"
+                                                : "pressure";
+}
+
+std::string selection_toml(const SurfaceSelection& s, const BodySpec& body) {
+  switch (s.kind) {
+    case SurfaceSelection::Kind::all:
+      return "";
+    case SurfaceSelection::Kind::face:
+      if (std::holds_alternative<RectangleRegion>(body.shape.region))
+        return fmt::format("face = \"{}\"\n", kRectangleFaces[s.face]);
+      return fmt::format("face = {}\n", s.face + 1);
+    case SurfaceSelection::Kind::box:
+      return fmt::format("box = {{ x = {}, y = {} }}\n", pair(s.box.lo.x, s.box.hi.x),
+                         pair(s.box.lo.y, s.box.hi.y));
+    case SurfaceSelection::Kind::half_plane:
+      return fmt::format("half_plane = {{ point = {}, normal = {} }}\n", pair(s.point.x, s.point.y),
+                         pair(s.normal.x, s.normal.y));
+  }
+  return "";
+}
+
 std::string time_toml(const CaseSpec& c) {
   if (c.dt_auto && c.dt == 0)
     return fmt::format("\n[time]\ndt = \"auto\"\nsafety = {}\nend = {}\n",
@@ -137,12 +162,17 @@ std::string resolved_case_toml(const CaseSpec& c) {
                        format_number(m.density));
   for (const auto& b : c.bodies) out += body_toml(c, b);
   for (const auto& l : c.loads) {
-    const bool step = l.type == LoadSpec::Type::step;
-    const double* v = step ? l.force : l.acceleration;
-    out += fmt::format("\n[loads.{}]\ntype = \"{}\"\nbody = {}\n{} = {}\nstart = {}\n", key(l.name),
-                       step ? "step" : "acceleration",
-                       quote(c.bodies[static_cast<std::size_t>(l.body)].name),
-                       step ? "force" : "acceleration", pair(v[0], v[1]), format_number(l.start));
+    const BodySpec& body = c.bodies[static_cast<std::size_t>(l.body)];
+    out += fmt::format("\n[loads.{}]\ntype = \"{}\"\nbody = {}\n", key(l.name), load_type(l.type),
+                       quote(body.name));
+    if (l.type == LoadSpec::Type::step)
+      out += fmt::format("force = {}\n", pair(l.force[0], l.force[1]));
+    else if (l.type == LoadSpec::Type::acceleration)
+      out += fmt::format("acceleration = {}\n", pair(l.acceleration[0], l.acceleration[1]));
+    else
+      out += fmt::format("pressure = {}\n", format_number(l.pressure)) +
+             selection_toml(l.surface, body);
+    out += fmt::format("start = {}\n", format_number(l.start));
     out += history_toml(l.history);
   }
   for (const auto& probe : c.probes)

@@ -1,15 +1,43 @@
 #pragma once
-// External forces on bodies, shared equally by a body's particles, each
-// following its time history (src/core/load_history.hpp), and the work they
-// do.
+// External forces on bodies, each following its time history
+// (src/core/load_history.hpp), and the work they do: a force shared equally
+// by a body's particles, or a pressure on part of its surface
+// (src/core/surface.hpp) along the current outward normals (a follower load).
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "src/core/load_history.hpp"
 #include "src/core/particle_store.hpp"
+#include "src/core/surface.hpp"
 
 namespace mpsolid {
+
+// A pressure's part of a body's surface: its selected segments, the nodes at
+// their ends (weights over storage indices), and the running step's node
+// positions and forces.
+struct PressureSurface {
+  double pressure = 0;  // Pa at a factor of 1
+  double depth = 0;     // m
+  std::vector<std::uint32_t> offsets{0}, particle;
+  std::vector<double> weight;
+  std::vector<std::uint32_t> from, to;  // each segment's nodes
+  // The running step: each node's position at its start, and its force.
+  std::vector<double> x, y, fx, fy;
+  // The particles the nodes' forces reach (increasing), each weight's place
+  // among them, and their forces in the running step.
+  std::vector<std::uint32_t> targets, slot;
+  std::vector<double> target_fx, target_fy;
+  std::size_t nodes() const { return offsets.size() - 1; }
+};
+
+// The segments `segments` of `surface`, whose sites are storage indices
+// `first` + site, under `pressure` over `depth`.
+PressureSurface make_pressure_surface(const Surface& surface,
+                                      const std::vector<std::uint32_t>& segments, std::size_t first,
+                                      double pressure, double depth);
+// Shifts its storage indices by `shift` (down): a rank's local indices.
+void shift_particles(PressureSurface& surface, std::size_t shift);
 
 struct StepLoad {
   std::string name;
@@ -28,7 +56,15 @@ struct StepLoad {
   double factor = 1;
   double cx_last = 0, cy_last = 0;
   double work = 0;
+  // A pressure load's surface; empty for a force.
+  PressureSurface surface;
+  bool is_pressure() const { return !surface.from.empty(); }
 };
+
+// A pressure load's node forces and their particles' sums, from its nodes'
+// positions (surface.x, y) and its factor: called each step, and where a
+// load's running step is restored (a checkpoint, a rank's slice).
+void pressure_forces(StepLoad& load);
 
 // At the start of `step` (with its start-of-step positions): switches on
 // the loads that start at it, recording the body's centroid, and for the

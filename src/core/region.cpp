@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "src/core/geometry.hpp"
+#include "src/core/region_boundary.hpp"
 
 namespace mpsolid {
 
@@ -34,21 +35,6 @@ struct Overloaded : F... {
 
 double radians(double degrees) {
   return degrees * (std::numbers::pi / 180.0);
-}
-
-// p turned by -angle_deg about c.
-Point2 unturn(Point2 p, Point2 c, double angle_deg) {
-  const double angle = radians(angle_deg);
-  const double cs = std::cos(angle), sn = std::sin(angle);
-  const double dx = p.x - c.x, dy = p.y - c.y;
-  return {c.x + cs * dx + sn * dy, c.y - sn * dx + cs * dy};
-}
-Point2 turn(Point2 p, Point2 c, double angle_deg) {
-  return unturn(p, c, -angle_deg);
-}
-
-Point2 rectangle_center(const RectangleRegion& r) {
-  return {0.5 * (r.x[0] + r.x[1]), 0.5 * (r.y[0] + r.y[1])};
 }
 
 BgPolygon to_bg(const std::vector<Point2>& outline) {
@@ -93,7 +79,7 @@ std::vector<Point2> ellipse_outline(Point2 c, double a, double b, double angle_d
   std::vector<Point2> out;
   for (int k = 0; k < segments; ++k) {
     const double t = 2.0 * std::numbers::pi * k / segments;
-    out.push_back(turn({c.x + a * std::cos(t), c.y + b * std::sin(t)}, c, angle_deg));
+    out.push_back(turn_point({c.x + a * std::cos(t), c.y + b * std::sin(t)}, c, angle_deg));
   }
   return out;
 }
@@ -110,6 +96,20 @@ BgMulti shape_area(const Shape& s) {
 }
 }  // namespace
 
+Point2 unturn_point(Point2 p, Point2 c, double angle_deg) {
+  const double angle = radians(angle_deg);
+  const double cs = std::cos(angle), sn = std::sin(angle);
+  const double dx = p.x - c.x, dy = p.y - c.y;
+  return {c.x + cs * dx + sn * dy, c.y - sn * dx + cs * dy};
+}
+Point2 turn_point(Point2 p, Point2 c, double angle_deg) {
+  return unturn_point(p, c, -angle_deg);
+}
+
+Point2 rectangle_center(const RectangleRegion& r) {
+  return {0.5 * (r.x[0] + r.x[1]), 0.5 * (r.y[0] + r.y[1])};
+}
+
 const char* region_kind(const Region& r) {
   return std::visit(Overloaded{[](const RectangleRegion&) { return "rectangle"; },
                                [](const CircleRegion&) { return "circle"; },
@@ -124,7 +124,7 @@ bool region_contains(const Region& region, Point2 p) {
       Overloaded{[&](const RectangleRegion& r) {
                    // Half open, turned about the centre when it has an angle.
                    const Point2 q =
-                       r.angle_deg == 0 ? p : unturn(p, rectangle_center(r), r.angle_deg);
+                       r.angle_deg == 0 ? p : unturn_point(p, rectangle_center(r), r.angle_deg);
                    return q.x >= r.x[0] && q.x < r.x[1] && q.y >= r.y[0] && q.y < r.y[1];
                  },
                  [&](const CircleRegion& r) {
@@ -132,7 +132,7 @@ bool region_contains(const Region& region, Point2 p) {
                    return dx * dx + dy * dy < r.radius * r.radius;
                  },
                  [&](const EllipseRegion& r) {
-                   const Point2 q = unturn(p, r.center, r.angle_deg);
+                   const Point2 q = unturn_point(p, r.center, r.angle_deg);
                    const double u = (q.x - r.center.x) / r.a, v = (q.y - r.center.y) / r.b;
                    return u * u + v * v < 1.0;
                  },
@@ -187,7 +187,7 @@ std::vector<Point2> region_outline(const Region& region, int segments) {
                    std::vector<Point2> out;
                    for (const Point2 v : {Point2{r.x[0], r.y[0]}, Point2{r.x[1], r.y[0]},
                                           Point2{r.x[1], r.y[1]}, Point2{r.x[0], r.y[1]}})
-                     out.push_back(r.angle_deg == 0 ? v : turn(v, c, r.angle_deg));
+                     out.push_back(r.angle_deg == 0 ? v : turn_point(v, c, r.angle_deg));
                    return out;
                  },
                  [&](const CircleRegion& r) {
@@ -379,6 +379,46 @@ bool shapes_overlap(const Shape& a, const Shape& b) {
   BgMulti both;
   bg::intersection(pa, pb, both);
   return bg::area(both) > 1e-6 * std::min(bg::area(pa), bg::area(pb));
+}
+
+}  // namespace mpsolid
+
+namespace mpsolid {
+
+std::string boundary_problem(const Shape& shape) {
+  struct Ring {
+    std::string name;
+    bg::model::linestring<BgPoint> line;
+    BgPolygon area;
+    bool hole;
+  };
+  std::vector<Ring> rings;
+  const auto add_ring = [&](const std::vector<Point2>& outline, std::string name, bool hole) {
+    Ring ring{std::move(name), {}, to_bg(outline), hole};
+    for (const Point2& v : outline) ring.line.emplace_back(v.x, v.y);
+    ring.line.push_back(ring.line.front());
+    rings.push_back(std::move(ring));
+  };
+  const auto add = [&](const Region& r, const std::string& name, bool hole) {
+    add_ring(region_outline(r), name, hole);
+    if (const auto* annulus = std::get_if<AnnulusRegion>(&r))
+      add_ring(region_outline(CircleRegion{annulus->center, annulus->inner}),
+               name + "'s inner circle", hole);
+  };
+  add(shape.region, "the body's edge", false);
+  for (std::size_t k = 0; k < shape.holes.size(); ++k)
+    add(shape.holes[k], "hole " + std::to_string(k + 1), true);
+  for (std::size_t a = 0; a < rings.size(); ++a)
+    for (std::size_t b = a + 1; b < rings.size(); ++b) {
+      if (bg::intersects(rings[a].line, rings[b].line))
+        return rings[a].name + " and " + rings[b].name + " touch";
+      if (!rings[a].hole || !rings[b].hole) continue;
+      if (bg::within(rings[a].line.front(), rings[b].area))
+        return rings[a].name + " lies inside " + rings[b].name;
+      if (bg::within(rings[b].line.front(), rings[a].area))
+        return rings[b].name + " lies inside " + rings[a].name;
+    }
+  return "";
 }
 
 }  // namespace mpsolid

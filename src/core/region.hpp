@@ -68,6 +68,11 @@ struct PolygonRegion {
 using Region =
     std::variant<RectangleRegion, CircleRegion, EllipseRegion, AnnulusRegion, PolygonRegion>;
 
+// p turned about c by angle_deg (degrees, counter-clockwise), and back.
+Point2 turn_point(Point2 p, Point2 c, double angle_deg);
+Point2 unturn_point(Point2 p, Point2 c, double angle_deg);
+Point2 rectangle_center(const RectangleRegion& r);
+
 // The region's kind as the case names it ("rectangle", "circle", ...).
 const char* region_kind(const Region& r);
 bool region_contains(const Region& r, Point2 p);

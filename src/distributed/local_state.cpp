@@ -105,6 +105,8 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   s.peak_work = global.peak_work;
   s.rigid_bodies = owned_items(global.rigid_bodies, layout, "rigid body");
   s.loads = owned_items(global.loads, layout, "the body of load");
+  for (StepLoad& load : s.loads)
+    shift_particles(load.surface, layout.owned_global.begin - layout.owned.begin);
   for (const HeldRange& hold : global.holds) {
     const Range mine = layout.owned_global;
     const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};

@@ -139,6 +139,10 @@ void put_load(Writer& w, const StepLoad& l) {
     w.put(v);
   w.put(h.times);
   w.put(h.factors);
+  const PressureSurface& s = l.surface;
+  for (const double v : {s.pressure, s.depth}) w.put(v);
+  for (const auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot}) w.put(*v);
+  for (const auto* v : {&s.weight, &s.x, &s.y}) w.put(*v);
 }
 StepLoad get_load(Reader& r) {
   StepLoad l;
@@ -154,6 +158,16 @@ StepLoad get_load(Reader& r) {
   for (double* v : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *v = r.get();
   h.times = r.get_vector<double>();
   h.factors = r.get_vector<double>();
+  PressureSurface& s = l.surface;
+  for (double* v : {&s.pressure, &s.depth}) *v = r.get();
+  for (auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot})
+    *v = r.get_vector<std::uint32_t>();
+  for (auto* v : {&s.weight, &s.x, &s.y}) *v = r.get_vector<double>();
+  s.fx.assign(s.nodes(), 0.0);
+  s.fy.assign(s.nodes(), 0.0);
+  s.target_fx.assign(s.targets.size(), 0.0);
+  s.target_fy.assign(s.targets.size(), 0.0);
+  if (l.is_pressure() && l.active) pressure_forces(l);
   return l;
 }
 

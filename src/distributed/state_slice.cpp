@@ -7,7 +7,7 @@ namespace mpsolid {
 namespace {
 // The evolving fields of a rigid body and of a load, as doubles: what moves
 // between ranks besides the particles.
-constexpr std::size_t fields_of(const RigidBody*) {
+std::size_t fields_of(const RigidBody*) {
   return 6;
 }
 void read_fields(const RigidBody& b, double* out) {
@@ -16,16 +16,24 @@ void read_fields(const RigidBody& b, double* out) {
 void write_fields(RigidBody& b, const double* in) {
   for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
 }
-constexpr std::size_t fields_of(const StepLoad*) {
-  return 7;
+// A pressure's running step: its nodes' positions at the step's start (its
+// forces follow from them).
+std::size_t fields_of(const StepLoad* l) {
+  return 7 + 2 * l->surface.x.size();
 }
 void read_fields(const StepLoad& l, double* out) {
   out[0] = l.active ? 1.0 : 0.0;
   for (const double x : {l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work}) *++out = x;
+  out = std::copy(l.surface.x.begin(), l.surface.x.end(), out + 1);
+  std::copy(l.surface.y.begin(), l.surface.y.end(), out);
 }
 void write_fields(StepLoad& l, const double* in) {
   l.active = in[0] != 0.0;
   for (double* x : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *x = *++in;
+  PressureSurface& s = l.surface;
+  std::copy_n(in + 1, s.x.size(), s.x.begin());
+  std::copy_n(in + 1 + s.x.size(), s.y.size(), s.y.begin());
+  if (l.is_pressure() && l.active) pressure_forces(l);
 }
 
 bool inside(Range r, Range owned) {

@@ -48,6 +48,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
     // before loads could vary keep their hashes).
     if (l.factor != 1 || l.cx_last != 0 || l.cy_last != 0 || l.work != 0)
       for (const double v : {l.factor, l.cx_last, l.cy_last, l.work}) h.value(v);
+    for (const double v : l.surface_xy) h.value(v);
   }
   return h.value();
 }
@@ -79,8 +80,12 @@ Checkpoint capture_state(const SolverState& state) {
   }
   for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
-  for (const StepLoad& l : state.loads)
-    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work});
+  for (const StepLoad& l : state.loads) {
+    c.loads.push_back(
+        {l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work, l.surface.x});
+    c.loads.back().surface_xy.insert(c.loads.back().surface_xy.end(), l.surface.y.begin(),
+                                     l.surface.y.end());
+  }
   return c;
 }
 
@@ -117,6 +122,11 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     if (c.loads[l].name != s.loads[l].name)
       refuse(fmt::format("load '{}' in the checkpoint, '{}' in the case", c.loads[l].name,
                          s.loads[l].name));
+    else if (c.loads[l].surface_xy.size() != 2 * s.loads[l].surface.nodes() &&
+             s.loads[l].is_pressure())
+      refuse(fmt::format("load '{}' has {} surface nodes in the checkpoint, {} in the case",
+                         c.loads[l].name, c.loads[l].surface_xy.size() / 2,
+                         s.loads[l].surface.nodes()));
 
   const std::vector<std::size_t> order = p.storage_of_id();
   for (std::size_t a = 0; a < arrays.size(); ++a) {
@@ -142,6 +152,13 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     s.loads[l].cx_last = c.loads[l].cx_last;
     s.loads[l].cy_last = c.loads[l].cy_last;
     s.loads[l].work = c.loads[l].work;
+    if (StepLoad& load = s.loads[l]; load.is_pressure()) {
+      const std::vector<double>& xy = c.loads[l].surface_xy;
+      const std::size_t n = load.surface.nodes();
+      std::copy_n(xy.begin(), n, load.surface.x.begin());
+      std::copy_n(xy.begin() + static_cast<long>(n), n, load.surface.y.begin());
+      if (load.active) pressure_forces(load);
+    }
   }
   s.step = c.step;
   s.peak_work = c.peak_work;
@@ -200,6 +217,15 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     loads.write("active", active);
     loads.write("centroid_on", centroid, 2);
     loads.write("varying", varying, 4);
+    // Pressures' nodes, load after load (each x then y), and how many per load.
+    std::vector<double> surfaces;
+    std::vector<std::int64_t> surface_sizes;
+    for (const auto& l : c.loads) {
+      surfaces.insert(surfaces.end(), l.surface_xy.begin(), l.surface_xy.end());
+      surface_sizes.push_back(static_cast<std::int64_t>(l.surface_xy.size()));
+    }
+    loads.write("surface_sizes", surface_sizes);
+    loads.write("surfaces", surfaces);
     file.close();
   }
   const std::uintmax_t bytes = std::filesystem::file_size(staged);
@@ -264,8 +290,32 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
         varying.insert(varying.end(), {1.0, 0.0, 0.0, 0.0});
     for (std::size_t l = 0; l < load_names.size(); ++l) {
       const double* v = varying.data() + 4 * l;
-      c.loads.push_back({load_names[l], active[l] != 0, centroid[2 * l], centroid[2 * l + 1], v[0],
-                         v[1], v[2], v[3]});
+      c.loads.push_back({load_names[l],
+                         active[l] != 0,
+                         centroid[2 * l],
+                         centroid[2 * l + 1],
+                         v[0],
+                         v[1],
+                         v[2],
+                         v[3],
+                         {}});
+    }
+    // Checkpoints written before pressures hold none.
+    if (loads.has("surface_sizes")) {
+      const auto sizes = loads.read<std::int64_t>("surface_sizes", load_names.size());
+      std::size_t total = 0;
+      for (const std::int64_t size : sizes) {
+        if (size < 0) throw h5::Error("a negative surface size");
+        total += static_cast<std::size_t>(size);
+      }
+      const std::vector<double> surfaces = loads.read<double>("surfaces", total);
+      std::size_t at = 0;
+      for (std::size_t l = 0; l < load_names.size(); ++l) {
+        const auto size = static_cast<std::size_t>(sizes[l]);
+        c.loads[l].surface_xy.assign(surfaces.begin() + static_cast<long>(at),
+                                     surfaces.begin() + static_cast<long>(at + size));
+        at += size;
+      }
     }
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));

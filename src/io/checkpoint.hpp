@@ -38,6 +38,8 @@ struct LoadState {
   // A varying load's (src/core/loads.hpp): factor, centroid at the last
   // step's start, work before it.
   double factor = 1, cx_last = 0, cy_last = 0, work = 0;
+  // A pressure's: its nodes' x at the last step's start, then their y.
+  std::vector<double> surface_xy;
 };
 
 struct Checkpoint {

@@ -23,9 +23,9 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
         cols.push_back(b.name + suffix);
   for (const ProbeSpec& probe : spec.probes)
     for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
-  // A varying load's factor (of the step that ran last) and its work.
+  // A varying load's or a pressure's factor (of the step that ran last) and its work.
   for (const StepLoad& l : state.loads)
-    if (!l.history.constant())
+    if (!l.history.constant() || l.is_pressure())
       for (const char* suffix : {".factor", ".work"}) cols.push_back("load." + l.name + suffix);
   return cols;
 }
@@ -51,7 +51,8 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
   }
   for (const std::size_t i : state.probes) row.insert(row.end(), {p.x[i], p.y[i]});
   for (const StepLoad& l : state.loads)
-    if (!l.history.constant()) row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});
+    if (!l.history.constant() || l.is_pressure())
+      row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});
   return row;
 }
 

@@ -7,6 +7,7 @@
 
 #include "neighbor/bond_search.hpp"
 #include "src/core/region.hpp"
+#include "src/core/surface.hpp"
 
 namespace mpsolid {
 
@@ -104,6 +105,11 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     if (l.type == LoadSpec::Type::step) {
       load.fx = l.force[0];
       load.fy = l.force[1];
+    } else if (l.type == LoadSpec::Type::pressure) {
+      const Shape& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape;
+      const Surface surface = build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
+      load.surface = make_pressure_surface(surface, select_segments(surface, l.surface),
+                                           load.range.begin, l.pressure, spec.depth);
     } else {
       // m a on each particle: the body's mass times a, shared equally.
       const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
