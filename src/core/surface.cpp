@@ -200,6 +200,10 @@ std::vector<std::uint32_t> select_segments(const Surface& surface,
   for (std::size_t k = 0; k < surface.nodes(); ++k) {
     const Point2 a = surface.node_ref[k], b = surface.node_ref[surface.next[k]];
     const Point2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+    // A midpoint on the selection's edge counts, give or take round-off in
+    // the nodes (a circle's nodes come from sines and cosines), so a
+    // symmetric selection of a symmetric body stays symmetric.
+    const double slack = 1e-9 * std::hypot(b.x - a.x, b.y - a.y);
     bool in = true;
     switch (selection.kind) {
       case SurfaceSelection::Kind::all:
@@ -208,14 +212,15 @@ std::vector<std::uint32_t> select_segments(const Surface& surface,
         in = surface.face[k] == selection.face;
         break;
       case SurfaceSelection::Kind::box:
-        in = mid.x >= selection.box.lo.x && mid.x <= selection.box.hi.x &&
-             mid.y >= selection.box.lo.y && mid.y <= selection.box.hi.y;
+        in = mid.x >= selection.box.lo.x - slack && mid.x <= selection.box.hi.x + slack &&
+             mid.y >= selection.box.lo.y - slack && mid.y <= selection.box.hi.y + slack;
         break;
-      case SurfaceSelection::Kind::half_plane:
-        in = (mid.x - selection.point.x) * selection.normal.x +
-                 (mid.y - selection.point.y) * selection.normal.y >=
-             0.0;
+      case SurfaceSelection::Kind::half_plane: {
+        const Point2 n = selection.normal;
+        in = (mid.x - selection.point.x) * n.x + (mid.y - selection.point.y) * n.y >=
+             -slack * std::hypot(n.x, n.y);
         break;
+      }
     }
     if (in) chosen.push_back(static_cast<std::uint32_t>(k));
   }

@@ -578,6 +578,56 @@ TEST(CaseErrors, AccelerationLoadsTakeAnAcceleration) {
                      {"bad.toml", "loads.shock.type", "step, acceleration"});
 }
 
+TEST(CaseErrors, PressuresSelectAPartOfTheSurface) {
+  const std::string head = "type = \"pressure\"\nbody = \"plate\"\npressure = 1e5\n";
+  const auto pressure = [&](const std::string& selection) {
+    return edit("type = \"step\"\nbody = \"plate\"\nforce = [11200.0, 0.0]\n", head + selection);
+  };
+  EXPECT_FALSE(error_of(pressure("face = \"left\"\n")).has_value());
+  EXPECT_FALSE(error_of(pressure("")).has_value());
+  EXPECT_FALSE(
+      error_of(pressure("box = { x = [-0.01, -0.005], y = [-0.04, 0.04] }\n")).has_value());
+  EXPECT_FALSE(error_of(pressure("half_plane = { point = [-0.003, 0.0], normal = [-1.0, 0.0] }\n"))
+                   .has_value());
+  EXPECT_INPUT_ERROR(pressure("face = \"front\"\n"),
+                     {"bad.toml", "loads.shock.face", "front", "bottom, right, top, left"});
+  EXPECT_INPUT_ERROR(pressure("box = { x = [0.2, 0.3], y = [0.0, 0.1] }\n"),
+                     {"bad.toml", "loads.shock.box", "selects no part of bodies.plate's surface",
+                      "x = [-0.006, 0]"});
+  EXPECT_INPUT_ERROR(
+      pressure("face = \"left\"\nhalf_plane = { point = [0.0, 0.0], normal = [1.0, 0.0] }\n"),
+      {"bad.toml", "loads.shock.half_plane", "one of face, box and half_plane"});
+  EXPECT_INPUT_ERROR(pressure("half_plane = { point = [0.0, 0.0], normal = [0.0, 0.0] }\n"),
+                     {"bad.toml", "loads.shock.half_plane.normal", "[0, 0]"});
+  EXPECT_INPUT_ERROR(pressure("box = { x = [0.2, 0.1], y = [0.0, 0.1] }\n"),
+                     {"bad.toml", "loads.shock.box.x", "x0 <= x1"});
+  EXPECT_INPUT_ERROR(edit("type = \"step\"\nbody = \"plate\"\nforce = [11200.0, 0.0]\n",
+                          head + "face = \"left\"\nforce = [1.0, 0.0]\n"),
+                     {"bad.toml", "force"});
+  // A circle has no named faces; a hole that touches the edge leaves no
+  // separate loops to put a pressure on.
+  const std::string disk =
+      "[bodies.disk]\nkind = \"elastic\"\nmaterial = \"rubber\"\nshape = "
+      "\"circle\"\ncenter = [0.3, 0.0]\nradius = 0.01\n";
+  const std::string on_disk =
+      "\n[loads.blast]\ntype = \"pressure\"\nbody = \"disk\"\npressure = 1e5\n";
+  EXPECT_INPUT_ERROR(base_toml() + disk + on_disk + "face = \"left\"\n",
+                     {"bad.toml", "loads.blast.face", "circle", "box or half_plane"});
+  const std::string notched =
+      "[bodies.disk]\nkind = \"elastic\"\nmaterial = \"rubber\"\nx = "
+      "[0.3, 0.32]\ny = [0.0, 0.01]\nholes = [{ shape = \"circle\", "
+      "center = [0.31, 0.008], radius = 0.002 }]\n";
+  EXPECT_INPUT_ERROR(base_toml() + notched + on_disk,
+                     {"bad.toml", "loads.blast.body", "the body's edge and hole 1 touch"});
+  // A polygon's faces are its edges, numbered as written.
+  const std::string poly =
+      "[bodies.disk]\nkind = \"elastic\"\nmaterial = \"rubber\"\nshape = "
+      "\"polygon\"\nvertices = [[0.3, 0.0], [0.32, 0.0], [0.31, 0.02]]\n";
+  EXPECT_FALSE(error_of(base_toml() + poly + on_disk + "face = 3\n").has_value());
+  EXPECT_INPUT_ERROR(base_toml() + poly + on_disk + "face = 4\n",
+                     {"bad.toml", "loads.blast.face", "1 to 3"});
+}
+
 TEST(CaseErrors, VertexFileProblemsNameTheLine) {
   const std::string good =
       testing::write_temp_file("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");

@@ -65,6 +65,9 @@ void expect_same_state(Simulation& a, Simulation& b) {
                         {u.cy_last, v.cy_last},
                         {u.work, v.work}})
       EXPECT_TRUE(same_bits(p, q)) << u.name;
+    EXPECT_EQ(u.surface.x, v.surface.x) << u.name;
+    EXPECT_EQ(u.surface.y, v.surface.y) << u.name;
+    EXPECT_EQ(u.surface.target_fx, v.surface.target_fx) << u.name;
   }
   const Diagnostics da = a.diagnostics(), db = b.diagnostics();
   EXPECT_TRUE(same_bits(da.kinetic_energy, db.kinetic_energy));
@@ -88,10 +91,11 @@ Checkpoint full_checkpoint(Simulation& sim) {
 // Runs `first` steps, checkpoints to a file, resumes a fresh simulation set
 // up from the stored case at `threads`, and runs both to `first + second`.
 void expect_resume_is_seamless(const std::vector<std::string>& overrides, std::int64_t first,
-                               std::int64_t second, int threads) {
+                               std::int64_t second, int threads,
+                               const std::string& case_file = "cases/shock_rod.toml") {
   TempDir dir;
   set_thread_count(1);
-  Simulation uninterrupted(testing::rod_case(overrides));
+  Simulation uninterrupted(load_case(testing::source_path(case_file), overrides));
   uninterrupted.advance(first);
   const std::filesystem::path path = dir.path() / "checkpoint.h5";
   write_checkpoint(path, full_checkpoint(uninterrupted));
@@ -176,6 +180,15 @@ TEST(Checkpoint, ResumeInTheMiddleOfARampAndABlastWave) {
   expect_resume_is_seamless({"loads.shock.history=\"friedlander\"", "loads.shock.duration=1e-6",
                              "loads.shock.decay=1.5", "loads.shock.start=0.3e-6"},
                             100, 100, 1);
+}
+
+// A pressure's running step (its nodes' positions at the step's start) is
+// part of the state: a checkpoint in the middle of a blast wave on a disk,
+// and of a ramped pressure on the rod's plate.
+TEST(Checkpoint, ResumeInTheMiddleOfAPressure) {
+  expect_resume_is_seamless({"l0=0.001"}, 30, 30, 2, "cases/disk_blast.toml");
+  expect_resume_is_seamless({"loads.shock.history=\"ramp\"", "loads.shock.rise_time=2e-6"}, 100,
+                            100, 2, "cases/shock_rod_pressure.toml");
 }
 
 TEST(Checkpoint, RefusesAnotherBondTable) {

@@ -6,6 +6,7 @@
 
 #include "kernels/model_registry.hpp"
 #include "src/core/parallel.hpp"
+#include "src/solver/case_loader.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
@@ -17,19 +18,19 @@ struct Snapshot {
   Diagnostics diagnostics;
 };
 
-Snapshot run_rod(int threads, const std::vector<std::string>& overrides) {
+Snapshot run_case(int threads, const CaseSpec& spec, std::int64_t steps = 1000) {
   set_thread_count(threads);
-  Simulation sim(testing::rod_case(overrides));
-  sim.advance(1000);
+  Simulation sim(spec);
+  sim.advance(steps);
   Snapshot s{sim.particles(), sim.diagnostics()};
   s.particles = sim.particles();
   return s;
 }
 
-void expect_same_bits(const std::vector<std::string>& overrides) {
-  const Snapshot one = run_rod(1, overrides);
+void expect_same_bits(const CaseSpec& spec, std::int64_t steps = 1000) {
+  const Snapshot one = run_case(1, spec, steps);
   for (int threads : {2, 3, 4}) {
-    const Snapshot many = run_rod(threads, overrides);
+    const Snapshot many = run_case(threads, spec, steps);
     EXPECT_TRUE(testing::same_bits(one.particles, many.particles)) << threads << " threads";
     EXPECT_EQ(one.diagnostics.kinetic_energy, many.diagnostics.kinetic_energy);
     EXPECT_EQ(one.diagnostics.strain_energy, many.diagnostics.strain_energy);
@@ -40,14 +41,23 @@ void expect_same_bits(const std::vector<std::string>& overrides) {
 }
 
 TEST(Determinism, RodCaseIsBitIdenticalAt1To4Threads) {
-  expect_same_bits({});
+  expect_same_bits(testing::rod_case());
+}
+
+// Pressures: on the rod's rigid plate (ramped), and a blast wave on half of
+// a free disk, whose surface nodes spread its forces over its particles.
+TEST(Determinism, PressureCasesAreBitIdenticalAt1To4Threads) {
+  expect_same_bits(
+      load_case(testing::source_path("cases/shock_rod_pressure.toml"),
+                {"l0=0.001", "loads.shock.history=\"ramp\"", "loads.shock.rise_time=3e-6"}));
+  expect_same_bits(load_case(testing::source_path("cases/disk_blast.toml")), 150);
 }
 
 // At l0 = 1 mm every kernel range is large enough to be split across threads.
 TEST(Determinism, FinerRodIsBitIdenticalAt1To4ThreadsForEveryModel) {
   for (const std::string& model : model_names()) {
     SCOPED_TRACE(model);
-    expect_same_bits({"l0=0.001", "model=" + model});
+    expect_same_bits(testing::rod_case({"l0=0.001", "model=" + model}));
   }
 }
 
@@ -116,6 +126,9 @@ TEST(Determinism, BatchedStepsEqualSingleStepsAt1And2And3Threads) {
         testing::rod_case({"model=" + model, "l0=0.004", "loads.shock.history=\"ramp\"",
                            "loads.shock.rise_time=3e-7"}));
     expect_batches_same_bits(testing::free_block_case(4, 4, true, 1e-7, model));
+    // A pressure: its forces are computed at the step's start, by one thread.
+    expect_batches_same_bits(
+        load_case(testing::source_path("cases/disk_blast.toml"), {"model=" + model, "l0=0.002"}));
     // Holds are cleared block by block: the same bits too.
     expect_batches_same_bits(testing::rod_case(
         {"model=" + model, "l0=0.004", "bodies.rod.hold=\"y\"", "bodies.rod.spin=50.0"}));

@@ -221,6 +221,21 @@ TEST(Surface, SelectionsPickTheirSegments) {
   EXPECT_NEAR(length_of(half), 0.006 + 2 * 0.001, 1e-15);
   box.box = {{1, 1}, {2, 2}};
   EXPECT_TRUE(select_segments(b.surface, box).empty());
+
+  // A half-plane through a disk's centre: the segments astride the line on
+  // both sides, so the loaded half's area vector has no y part.
+  const Body disk({CircleRegion{{0, 0}, 0.01}, {}}, 0.0005);
+  SurfaceSelection left;
+  left.kind = SurfaceSelection::Kind::half_plane;
+  left.normal = {-1, 0};
+  double ax = 0, ay = 0;
+  for (const std::uint32_t k : select_segments(disk.surface, left)) {
+    const Point2 a = disk.surface.node_ref[k], c = disk.surface.node_ref[disk.surface.next[k]];
+    ax += c.y - a.y;
+    ay -= c.x - a.x;
+  }
+  EXPECT_NEAR(ax, -0.02, 2e-5);  // the chord from top to bottom
+  EXPECT_LT(std::abs(ay), 1e-15);
 }
 
 TEST(Surface, HolesThatTouchTheEdgeAreRefused) {
