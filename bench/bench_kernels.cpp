@@ -64,7 +64,7 @@ void run_kernel(benchmark::State& state, Kernel kernel, const std::string& model
             BodyKicks kicks(s.rigid_bodies.size());
             time_in_team(state, repeats, [&] {
               parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-                integrate_block<rot>(s, sim.spec().dt, {b, e}, kicks);
+                integrate_block<rot>(s, sim.spec().dt, s.step, {b, e}, kicks);
               });
             });
             particles = static_cast<double>(p.moving().size());

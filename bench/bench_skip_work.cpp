@@ -52,7 +52,7 @@ void run_integrate(benchmark::State& state, long l0_um, bool rotation, int threa
   BodyKicks kicks(s.rigid_bodies.size());
   auto integrate = [&]<bool Rotation>() {
     parallel_blocks(p.moving().begin, p.moving().end, [&](std::size_t b, std::size_t e) {
-      integrate_block<Rotation>(s, sim.spec().dt, {b, e}, kicks);
+      integrate_block<Rotation>(s, sim.spec().dt, s.step, {b, e}, kicks);
     });
   };
   time_in_team(state, repeats_for(p.size()), [&] {

@@ -179,6 +179,20 @@ void read_bodies(TableReader& top, CaseSpec& c) {
                                c.l0, particle_total, kMaxParticles));
 }
 
+void read_damping(TableReader& top, CaseSpec& c) {
+  const TomlValue* table = top.subtable_or_null("damping");
+  if (!table) return;
+  TableReader r(*table, "damping", top.file());
+  DampingSpec& d = c.damping;
+  d.coefficient = r.number("coefficient", "c in 1/s: the force -c m v on every moving particle");
+  r.range_check("coefficient", d.coefficient, d.coefficient > 0, "(0, inf) 1/s");
+  d.start = r.number_or("start", 0.0);
+  r.range_check("start", d.start, d.start >= 0, "[0, inf) s");
+  d.end = r.number("end", "when the damping stops, in s");
+  r.range_check("end", d.end, d.end > d.start, fmt::format("({}, inf) s: after start", d.start));
+  r.finish();
+}
+
 void read_loads(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("loads");
   if (!table) return;
@@ -428,6 +442,7 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_materials(top, c);
   read_bodies(top, c);
   read_loads(top, c);
+  read_damping(top, c);
   read_probes(top, c);
   read_time(top, c);
   read_output(top, c);

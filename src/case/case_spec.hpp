@@ -70,6 +70,13 @@ struct LoadSpec {
   LoadHistory history;
 };
 
+// [damping]: mass-proportional damping of every moving particle from
+// `start` to `end` (src/core/damping.hpp).
+struct DampingSpec {
+  double coefficient = 0;  // 1/s; 0: no [damping] table
+  double start = 0, end = 0;
+};
+
 // Blow-up checks, run every `check_interval` steps.
 struct StabilitySpec {
   std::int64_t check_interval = 500;  // steps
@@ -112,6 +119,7 @@ struct CaseSpec {
   std::vector<Material> materials;
   std::vector<BodySpec> bodies;  // in name order: this fixes the particle ids
   std::vector<LoadSpec> loads;
+  DampingSpec damping;
   std::vector<ProbeSpec> probes;  // in name order
   double dt = 0;                  // s; 0 until chosen when dt_auto
   // time.dt = "auto": the step is chosen at set-up as dt_safety times the

@@ -175,6 +175,10 @@ std::string resolved_case_toml(const CaseSpec& c) {
     out += fmt::format("start = {}\n", format_number(l.start));
     out += history_toml(l.history);
   }
+  if (c.damping.coefficient > 0)
+    out += fmt::format("\n[damping]\ncoefficient = {}\nstart = {}\nend = {}\n",
+                       format_number(c.damping.coefficient), format_number(c.damping.start),
+                       format_number(c.damping.end));
   for (const auto& probe : c.probes)
     out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),
                        format_number(probe.at[0]), format_number(probe.at[1]));

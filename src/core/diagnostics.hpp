@@ -13,6 +13,7 @@ struct Diagnostics {
   // capped at the search's reach (0 without contact).
   double contact_min_distance = 0;
   double external_work = 0;
+  double damping_loss = 0;  // the energy damping took out (0 without [damping])
   double momentum_x = 0, momentum_y = 0;
   double angular_momentum = 0;
   double max_speed = 0;

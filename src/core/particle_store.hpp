@@ -38,6 +38,7 @@ const char* role_name(ArrayRole role);
   X(vy,          "vy",          double,       state,     0.0,           "velocity y (m/s)")        \
   X(theta,       "theta",       double,       state,     0.0,           "rotation angle (rad)")    \
   X(omega,       "omega",       double,       state,     0.0,           "angular velocity (rad/s)") \
+  X(damping_loss, "damping_loss", double,     state,     0.0,           "energy damping took out (J)") \
   X(x0,          "x0",          double,       reference, 0.0,           "reference position x (m)") \
   X(y0,          "y0",          double,       reference, 0.0,           "reference position y (m)") \
   X(half_cos,    "half_cos",    double,       work,      1.0,           "cos(theta/2)")            \

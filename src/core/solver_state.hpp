@@ -8,6 +8,7 @@
 
 #include "src/core/bonds.hpp"
 #include "src/core/contact_state.hpp"
+#include "src/core/damping.hpp"
 #include "src/core/holds.hpp"
 #include "src/core/loads.hpp"
 #include "src/core/particle_store.hpp"
@@ -22,6 +23,7 @@ struct SolverState {
   std::vector<StepLoad> loads;
   std::vector<HeldRange> holds;
   ContactState contact;             // empty unless the case has contact
+  Damping damping;                  // none unless the case has [damping]
   std::vector<Range> body_ranges;   // storage range of each body (case order)
   std::vector<std::size_t> probes;  // storage index of each probe's particle (case order)
   std::int64_t step = 0;

@@ -45,14 +45,14 @@ StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, doubl
                               double tolerance) {
   StabilityVerdict v;
   const double scale = std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy)});
-  // PE: the strain energy and the contact energy.
-  v.value =
-      d.kinetic_energy + d.strain_energy + d.contact_energy - d.external_work - initial_energy;
+  // PE: the strain energy and the contact energy; D: what damping took out.
+  v.value = d.kinetic_energy + d.strain_energy + d.contact_energy + d.damping_loss -
+            d.external_work - initial_energy;
   v.limit = tolerance * scale;
   if (scale > 0.0 && std::abs(v.value) > v.limit) {
     v.ok = false;
     v.criterion = fmt::format(
-        "energy balance: KE + PE - W - E0 = {:.4g} J, more than {:g} of max(peak W, E0) = "
+        "energy balance: KE + PE + D - W - E0 = {:.4g} J, more than {:g} of max(peak W, E0) = "
         "{:.4g} J",
         v.value, tolerance, scale);
   }

@@ -103,6 +103,7 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   s.bonds = local_bonds(global.bonds, s.particles, layout);
   s.step = global.step;
   s.peak_work = global.peak_work;
+  s.damping = global.damping;
   s.rigid_bodies = owned_items(global.rigid_bodies, layout, "rigid body");
   s.loads = owned_items(global.loads, layout, "the body of load");
   for (StepLoad& load : s.loads)

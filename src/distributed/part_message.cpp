@@ -225,6 +225,9 @@ void pack_local_part(const LocalPart& part,
   w.put(c.group);
   w.put(static_cast<double>(s.step));
   w.put(s.peak_work);
+  for (const double v : {s.damping.coefficient, static_cast<double>(s.damping.first_step),
+                         static_cast<double>(s.damping.end_step)})
+    w.put(v);
   w.finish();
 }
 
@@ -269,6 +272,9 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   c.force_y.assign(c.size(), 0.0);
   s.step = r.get_as<std::int64_t>();
   s.peak_work = r.get();
+  s.damping.coefficient = r.get();
+  s.damping.first_step = r.get_as<std::int64_t>();
+  s.damping.end_step = r.get_as<std::int64_t>();
   if (!r.done()) throw std::logic_error("a rank's part: the message is longer than its part");
   return part;
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 #include <set>
 
@@ -324,6 +325,14 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     throw InputError(
         fmt::format("{}: damaged checkpoint: its contents do not match the hash stored with them",
                     path.string()));
+  // Checkpoints written before damping hold no damping_loss: nothing was lost.
+  const auto named = [&](const char* name) {
+    return std::find_if(c.particle_arrays.begin(), c.particle_arrays.end(),
+                        [&](const auto& a) { return a.first == name; });
+  };
+  if (named("damping_loss") == c.particle_arrays.end() && named("omega") != c.particle_arrays.end())
+    c.particle_arrays.emplace(named("omega") + 1, "damping_loss",
+                              std::vector<double>(named("omega")->second.size(), 0.0));
   return c;
 }
 

@@ -14,6 +14,7 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
   std::vector<std::string> cols = {
       "t",          "kinetic_energy", "strain_energy",    "external_work",
       "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
+  if (spec.damping.coefficient > 0) cols.push_back("damping_loss");
   if (state.contact.enabled()) cols.insert(cols.end(), {"contact_energy", "contact_min_distance"});
   for (const RigidBody& b : state.rigid_bodies)
     for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
@@ -35,6 +36,7 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
   std::vector<double> row = {spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
                              d.external_work,          d.momentum_x,     d.momentum_y,
                              d.angular_momentum,       d.max_speed};
+  if (spec.damping.coefficient > 0) row.push_back(d.damping_loss);
   if (state.contact.enabled()) row.insert(row.end(), {d.contact_energy, d.contact_min_distance});
   for (const RigidBody& b : state.rigid_bodies) {
     row.push_back(b.xg - b.xg0);

@@ -122,9 +122,15 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 }
 
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
+  // The first step k with k dt >= t.
+  const auto first_step_at = [&](double t) {
+    return static_cast<std::int64_t>(std::ceil(t / spec.dt - 1e-9));
+  };
   for (std::size_t k = 0; k < spec.loads.size(); ++k)
-    s.loads[k].first_step =
-        static_cast<std::int64_t>(std::ceil(spec.loads[k].start / spec.dt - 1e-9));
+    s.loads[k].first_step = first_step_at(spec.loads[k].start);
+  if (spec.damping.coefficient > 0)
+    s.damping = {spec.damping.coefficient, first_step_at(spec.damping.start),
+                 first_step_at(spec.damping.end)};
 }
 
 }  // namespace mpsolid

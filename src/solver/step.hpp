@@ -29,6 +29,7 @@
 
 #include "kernels/contact_force.hpp"
 #include "neighbor/contact_search.hpp"
+#include "src/core/damping.hpp"
 #include "src/core/half_angles.hpp"
 #include "src/core/integrator.hpp"
 #include "src/core/particle_field.hpp"
@@ -57,11 +58,12 @@ class BodyKicks {
 // Loads, holds, kick, drift and half angles of the moving particles in one
 // block, and the projection of each rigid body whose last particles it kicks.
 template <bool Rotation>
-void integrate_block(SolverState& s, double dt, Range block, BodyKicks& kicks) {
+void integrate_block(SolverState& s, double dt, std::int64_t step, Range block, BodyKicks& kicks) {
   ParticleStore& p = s.particles;
   if (s.contact.enabled()) add_contact_forces(p, s.contact, block);
   apply_loads(p, s.loads, block);
   if (!s.holds.empty()) clear_held_forces(p, s.holds, block);
+  if (s.damping.active(step)) damp_block(p, block, s.damping.coefficient, dt, Rotation);
   kick_drift(p, {block.begin, std::min(block.end, p.elastic.end)}, dt, Rotation);
   kick(p, {std::max(block.begin, p.rigid.begin), block.end}, dt, Rotation);
   for (std::size_t k = 0; k < s.rigid_bodies.size(); ++k) {
@@ -163,7 +165,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     }
     auto t = place.time(Phase::integrate);
     parallel_blocks(moving.begin, moving.end, [&](std::size_t b, std::size_t e) {
-      integrate_block<rot>(s, dt, {b, e}, kicks);
+      integrate_block<rot>(s, dt, step, {b, e}, kicks);
     });
   } else {
     // A block's forces read no position, so its integration follows at once:
@@ -171,7 +173,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     auto t = place.time(Phase::forces);
     parallel_blocks(moving.begin, moving.end, [&](std::size_t b, std::size_t e) {
       model.compute_forces_block(p, s.bonds, {b, e});
-      integrate_block<rot>(s, dt, {b, e}, kicks);
+      integrate_block<rot>(s, dt, step, {b, e}, kicks);
     });
   }
 }

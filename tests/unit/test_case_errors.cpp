@@ -628,6 +628,19 @@ TEST(CaseErrors, PressuresSelectAPartOfTheSurface) {
                      {"bad.toml", "loads.blast.face", "1 to 3"});
 }
 
+TEST(CaseErrors, DampingNeedsACoefficientAndAWindow) {
+  EXPECT_FALSE(
+      error_of(base_toml() + "\n[damping]\ncoefficient = 100.0\nend = 1e-3\n").has_value());
+  EXPECT_INPUT_ERROR(base_toml() + "\n[damping]\ncoefficient = 0.0\nend = 1e-3\n",
+                     {"bad.toml", "damping.coefficient", "(0, inf) 1/s"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[damping]\ncoefficient = 100.0\nstart = 2e-3\nend = 1e-3\n",
+                     {"bad.toml", "damping.end", "after start"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[damping]\ncoefficient = 100.0\n",
+                     {"bad.toml", "damping.end"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[damping]\ncoefficient = 100.0\nend = 1e-3\nalpha = 1\n",
+                     {"bad.toml", "damping", "alpha"});
+}
+
 TEST(CaseErrors, VertexFileProblemsNameTheLine) {
   const std::string good =
       testing::write_temp_file("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");
