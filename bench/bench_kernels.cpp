@@ -74,7 +74,7 @@ void run_kernel(benchmark::State& state, Kernel kernel, const std::string& model
           case Kernel::rigid_bodies:
             time_in_team(state, repeats, [&] {
               parallel_for(0, s.rigid_bodies.size(), [&](std::size_t k) {
-                project_rigid_body(p, s.rigid_bodies[k], sim.spec().dt, rot);
+                project_rigid_body(p, s.rigid_bodies[k], 0.0, sim.spec().dt, rot);
               });
             });
             particles = static_cast<double>(p.rigid.size());

@@ -106,6 +106,31 @@ void read_materials(TableReader& top, CaseSpec& c) {
 }
 
 // velocity, spin, hold and bending_mode of a [bodies.NAME] table.
+// [bodies.NAME.motion]: velocity = [vx, vy], spin, start and a history. A
+// wall driven so is stepped as a rigid body: both follow the motion alone.
+void read_prescribed_motion(TableReader& r, BodySpec& b, const std::string& case_file) {
+  const TomlValue* table = r.subtable_or_null("motion");
+  if (!table) return;
+  if (b.kind == Kind::elastic)
+    r.fail("motion", "only a wall or a rigid body can be driven (an elastic body takes loads)");
+  for (const char* k : {"velocity", "spin"})
+    if (r.has(k))
+      r.fail(k, "a driven body moves as its motion says: give its velocity in motion.velocity");
+  TableReader m(*table, r.key_path("motion"), r.file());
+  PrescribedMotion& motion = b.motion;
+  motion.on = true;
+  double v[2];
+  m.pair("velocity", "the velocity [vx, vy] in m/s at a history factor of 1", v);
+  motion.vx = v[0];
+  motion.vy = v[1];
+  motion.spin = m.number_or("spin", 0.0);
+  motion.start = m.number_or("start", 0.0);
+  m.range_check("start", motion.start, motion.start >= 0, "[0, inf) s");
+  motion.history = read_history(m, case_file);
+  m.finish();
+  b.kind = Kind::rigid;
+}
+
 void read_body_motion(TableReader& r, BodySpec& b) {
   const bool wall = b.kind == Kind::wall;
   for (const char* k : {"velocity", "spin", "hold", "bending_mode"})
@@ -114,7 +139,7 @@ void read_body_motion(TableReader& r, BodySpec& b) {
   b.spin = r.number_or("spin", 0.0);
   b.hold = parse_hold(r, "hold", r.string_or("hold", "none"));
   if (b.kind == Kind::rigid && b.hold != Hold::none)
-    r.fail("hold", "a rigid body cannot be held (use a wall for a fixed body)");
+    r.fail("hold", "a rigid body cannot be held (use a wall for a fixed body, or a motion)");
   if (const TomlValue* table = r.subtable_or_null("bending_mode")) {
     if (b.kind != Kind::elastic)
       r.fail("bending_mode", "only an elastic body can start in a bending mode");
@@ -145,6 +170,7 @@ void read_bodies(TableReader& top, CaseSpec& c) {
         b.material =
             index_by_name(r, "material", "the name of a [materials.NAME] table", c.materials);
         b.shape = read_shape(r, file);
+        read_prescribed_motion(r, b, file);
         read_body_motion(r, b);
         // Estimate in floating point first: integer lattice indices would
         // overflow for an absurdly small l0.

@@ -10,6 +10,7 @@
 #include "src/core/material.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/region.hpp"
+#include "src/core/rigid_body.hpp"
 #include "src/core/surface.hpp"
 #include "src/core/types.hpp"
 
@@ -42,6 +43,9 @@ struct BodySpec {
   bool has_mode = false;
   BendingMode mode;
   Hold hold = Hold::none;
+  // [bodies.NAME.motion]: a rigid body driven at a prescribed velocity (a
+  // wall given a motion is read as such a rigid body).
+  PrescribedMotion motion;
   // Lattice sites in the shape at spacing l0 (centres at (k + 1/2) l0).
   std::int64_t site_count(double l0) const { return count_shape_sites(shape, l0); }
 };

@@ -95,6 +95,11 @@ std::string body_toml(const CaseSpec& c, const BodySpec& b) {
                        format_number(b.velocity[1]));
   if (b.spin != 0) out += fmt::format("spin = {}\n", format_number(b.spin));
   if (b.hold != Hold::none) out += fmt::format("hold = \"{}\"\n", hold_name(b.hold));
+  if (b.motion.on)
+    out += fmt::format("\n[bodies.{}.motion]\nvelocity = {}\nspin = {}\nstart = {}\n", key(b.name),
+                       pair(b.motion.vx, b.motion.vy), format_number(b.motion.spin),
+                       format_number(b.motion.start)) +
+           history_toml(b.motion.history);
   if (b.has_mode)
     out += fmt::format(
         "\n[bodies.{}.bending_mode]\nroot_x = {}\nlength = {}\nkL = {}\ntip_velocity = {}\n",

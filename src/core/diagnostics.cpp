@@ -34,6 +34,7 @@ Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_e
   Diagnostics d = motion_diagnostics(s.particles);
   d.strain_energy = strain_energy;
   d.external_work = external_work(s.particles, s.loads);
+  for (const RigidBody& body : s.rigid_bodies) d.external_work += body.work;  // drivers
   return d;
 }
 

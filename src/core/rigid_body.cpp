@@ -36,7 +36,8 @@ RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range)
   return body;
 }
 
-void project_rigid_body(ParticleStore& p, RigidBody& body, double dt, bool with_rotation) {
+void project_rigid_body(ParticleStore& p, RigidBody& body, double t, double dt,
+                        bool with_rotation) {
   const Range r = body.range;
   // Linear momentum and angular momentum about the centroid (orbital + spin).
   const auto [px, py, lz] = ordered_sum<3>(r.begin, r.end, [&](std::size_t i) {
@@ -46,10 +47,25 @@ void project_rigid_body(ParticleStore& p, RigidBody& body, double dt, bool with_
         m * p.vx[i], m * p.vy[i],
         m * cross(p.x[i] - body.xg, p.y[i] - body.yg, p.vx[i], p.vy[i]) + spin};
   });
-  body.vx = px / body.mass_total;
-  body.vy = py / body.mass_total;
   // Without particle spins (models without rotation) only the orbital part counts.
-  body.omega = lz / (body.orbital_inertia + (with_rotation ? body.spin_inertia : 0.0));
+  const double inertia = body.orbital_inertia + (with_rotation ? body.spin_inertia : 0.0);
+  if (body.motion.on) {
+    const PrescribedMotion& m = body.motion;
+    const double f = m.factor(t, dt);
+    const double vx = f * m.vx, vy = f * m.vy, omega = f * m.spin;
+    // The driver's impulse beyond the forces, times the step's mean velocity
+    // (a sudden start costs the body's kinetic energy, not twice it).
+    body.work += (body.mass_total * vx - px) * 0.5 * (body.vx + vx) +
+                 (body.mass_total * vy - py) * 0.5 * (body.vy + vy) +
+                 (inertia * omega - lz) * 0.5 * (body.omega + omega);
+    body.vx = vx;
+    body.vy = vy;
+    body.omega = omega;
+  } else {
+    body.vx = px / body.mass_total;
+    body.vy = py / body.mass_total;
+    body.omega = lz / inertia;
+  }
   body.xg += dt * body.vx;
   body.yg += dt * body.vy;
   body.angle += dt * body.omega;

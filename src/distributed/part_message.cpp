@@ -108,37 +108,56 @@ ParticleStore get_particles(Reader& r) {
   return p;
 }
 
+void put_history(Writer& w, const LoadHistory& h) {
+  for (const double v : {static_cast<double>(h.kind), h.rise_time, h.duration, h.decay}) w.put(v);
+  w.put(h.times);
+  w.put(h.factors);
+}
+LoadHistory get_history(Reader& r) {
+  LoadHistory h;
+  h.kind = static_cast<LoadHistory::Kind>(r.get_as<int>());
+  for (double* v : {&h.rise_time, &h.duration, &h.decay}) *v = r.get();
+  h.times = r.get_vector<double>();
+  h.factors = r.get_vector<double>();
+  return h;
+}
+
 void put_body(Writer& w, const RigidBody& b) {
   w.put(b.name);
   w.put(b.range);
   for (const double v : {b.xg0, b.yg0, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.orbital_inertia,
-                         b.spin_inertia, b.mass_total})
+                         b.spin_inertia, b.mass_total, b.work})
     w.put(v);
   w.put(b.dx0);
   w.put(b.dy0);
+  const PrescribedMotion& m = b.motion;
+  for (const double v : {m.on ? 1.0 : 0.0, m.vx, m.vy, m.spin, m.start}) w.put(v);
+  put_history(w, m.history);
 }
 RigidBody get_body(Reader& r) {
   RigidBody b;
   b.name = r.get_string();
   b.range = r.get_range();
   for (double* v : {&b.xg0, &b.yg0, &b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega,
-                    &b.orbital_inertia, &b.spin_inertia, &b.mass_total})
+                    &b.orbital_inertia, &b.spin_inertia, &b.mass_total, &b.work})
     *v = r.get();
   b.dx0 = r.get_vector<double>();
   b.dy0 = r.get_vector<double>();
+  PrescribedMotion& m = b.motion;
+  m.on = r.get() != 0.0;
+  for (double* v : {&m.vx, &m.vy, &m.spin, &m.start}) *v = r.get();
+  m.history = get_history(r);
   return b;
 }
 
 void put_load(Writer& w, const StepLoad& l) {
   w.put(l.name);
   w.put(l.range);
-  const LoadHistory& h = l.history;
-  for (const double v : {l.fx, l.fy, static_cast<double>(h.kind), h.rise_time, h.duration, h.decay,
-                         l.start, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on,
-                         l.cy_on, l.factor, l.cx_last, l.cy_last, l.work})
+  for (const double v :
+       {l.fx, l.fy, l.start, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on,
+        l.cy_on, l.factor, l.cx_last, l.cy_last, l.work})
     w.put(v);
-  w.put(h.times);
-  w.put(h.factors);
+  put_history(w, l.history);
   const PressureSurface& s = l.surface;
   for (const double v : {s.pressure, s.depth}) w.put(v);
   for (const auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot}) w.put(*v);
@@ -148,16 +167,13 @@ StepLoad get_load(Reader& r) {
   StepLoad l;
   l.name = r.get_string();
   l.range = r.get_range();
-  LoadHistory& h = l.history;
   l.fx = r.get();
   l.fy = r.get();
-  h.kind = static_cast<LoadHistory::Kind>(r.get_as<int>());
-  for (double* v : {&h.rise_time, &h.duration, &h.decay, &l.start}) *v = r.get();
+  l.start = r.get();
   l.first_step = r.get_as<std::int64_t>();
   l.active = r.get() != 0.0;
   for (double* v : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *v = r.get();
-  h.times = r.get_vector<double>();
-  h.factors = r.get_vector<double>();
+  l.history = get_history(r);
   PressureSurface& s = l.surface;
   for (double* v : {&s.pressure, &s.depth}) *v = r.get();
   for (auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot})

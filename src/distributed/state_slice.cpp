@@ -8,13 +8,13 @@ namespace {
 // The evolving fields of a rigid body and of a load, as doubles: what moves
 // between ranks besides the particles.
 std::size_t fields_of(const RigidBody*) {
-  return 6;
+  return 7;
 }
 void read_fields(const RigidBody& b, double* out) {
-  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) *out++ = x;
+  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.work}) *out++ = x;
 }
 void write_fields(RigidBody& b, const double* in) {
-  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega}) *x = *in++;
+  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega, &b.work}) *x = *in++;
 }
 // A pressure's running step: its nodes' positions at the step's start (its
 // forces follow from them).

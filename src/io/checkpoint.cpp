@@ -39,6 +39,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
   for (const auto& b : c.rigid_bodies) {
     h.text(b.name);
     for (double v : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) h.value(v);
+    if (b.work != 0) h.value(b.work);  // driven bodies only: older hashes stay
   }
   for (const auto& l : c.loads) {
     h.text(l.name);
@@ -80,7 +81,7 @@ Checkpoint capture_state(const SolverState& state) {
     c.particle_arrays.emplace_back(a.name, std::move(by_id));
   }
   for (const RigidBody& b : state.rigid_bodies)
-    c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
+    c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.work});
   for (const StepLoad& l : state.loads) {
     c.loads.push_back(
         {l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work, l.surface.x});
@@ -144,6 +145,7 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     to.vx = from.vx;
     to.vy = from.vy;
     to.omega = from.omega;
+    to.work = from.work;
   }
   for (std::size_t l = 0; l < c.loads.size(); ++l) {
     s.loads[l].active = c.loads[l].active;
@@ -203,6 +205,9 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     }
     bodies.write_strings("names", body_names);
     bodies.write("state", pose, 6);
+    std::vector<double> work;
+    for (const auto& b : c.rigid_bodies) work.push_back(b.work);
+    bodies.write("work", work);
 
     const h5::Group loads = file.create_group("loads");
     std::vector<std::string> load_names;
@@ -275,7 +280,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     const std::vector<double> pose = bodies.read<double>("state", body_names.size(), 6);
     for (std::size_t b = 0; b < body_names.size(); ++b) {
       const double* v = pose.data() + 6 * b;
-      c.rigid_bodies.push_back({body_names[b], v[0], v[1], v[2], v[3], v[4], v[5]});
+      c.rigid_bodies.push_back({body_names[b], v[0], v[1], v[2], v[3], v[4], v[5], 0.0});
+    }
+    // Checkpoints written before driven bodies hold no work: none was done.
+    if (bodies.has("work")) {
+      const std::vector<double> work = bodies.read<double>("work", body_names.size());
+      for (std::size_t b = 0; b < body_names.size(); ++b) c.rigid_bodies[b].work = work[b];
     }
 
     const h5::Group loads = file.open_group("loads");

@@ -16,8 +16,10 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
       "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
   if (spec.damping.coefficient > 0) cols.push_back("damping_loss");
   if (state.contact.enabled()) cols.insert(cols.end(), {"contact_energy", "contact_min_distance"});
-  for (const RigidBody& b : state.rigid_bodies)
+  for (const RigidBody& b : state.rigid_bodies) {
     for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
+    if (b.motion.on) cols.push_back(b.name + ".work");  // its driver's
+  }
   for (const BodySpec& b : spec.bodies)
     if (b.kind == Kind::elastic)
       for (const char* suffix : {".xmin", ".xmax", ".ymin", ".ymax"})
@@ -42,6 +44,7 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
     row.push_back(b.xg - b.xg0);
     row.push_back(b.yg - b.yg0);
     row.push_back(b.angle);
+    if (b.motion.on) row.push_back(b.work);
   }
   const ParticleStore& p = state.particles;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {

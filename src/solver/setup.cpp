@@ -73,8 +73,10 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   }
 
   for (std::size_t b : order)
-    if (spec.bodies[b].kind == Kind::rigid)
+    if (spec.bodies[b].kind == Kind::rigid) {
       s.rigid_bodies.push_back(make_rigid_body(p, spec.bodies[b].name, s.body_ranges[b]));
+      s.rigid_bodies.back().motion = spec.bodies[b].motion;
+    }
 
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none)

@@ -71,7 +71,7 @@ void integrate_block(SolverState& s, double dt, std::int64_t step, Range block, 
     const std::size_t b = std::max(block.begin, body.range.begin);
     const std::size_t e = std::min(block.end, body.range.end);
     if (b < e && kicks.completes(k, e - b, body.range.size()))
-      project_rigid_body(p, body, dt, Rotation);
+      project_rigid_body(p, body, static_cast<double>(step) * dt, dt, Rotation);
   }
 }
 

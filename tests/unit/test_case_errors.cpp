@@ -641,6 +641,22 @@ TEST(CaseErrors, DampingNeedsACoefficientAndAWindow) {
                      {"bad.toml", "damping", "alpha"});
 }
 
+TEST(CaseErrors, OnlyWallsAndRigidBodiesAreDriven) {
+  EXPECT_FALSE(
+      error_of(base_toml() + "\n[bodies.wall.motion]\nvelocity = [-1.0, 0.0]\n").has_value());
+  EXPECT_INPUT_ERROR(base_toml() + "\n[bodies.rod.motion]\nvelocity = [1.0, 0.0]\n",
+                     {"bad.toml", "bodies.rod.motion", "only a wall or a rigid body"});
+  EXPECT_INPUT_ERROR(base_toml() + "\n[bodies.plate.motion]\nspin = 1.0\n",
+                     {"bad.toml", "bodies.plate.motion.velocity"});
+  EXPECT_INPUT_ERROR(edit("x = [-0.006, 0.0]", "x = [-0.006, 0.0]\nvelocity = [1.0, 0.0]") +
+                         "\n[bodies.plate.motion]\nvelocity = [1.0, 0.0]\n",
+                     {"bad.toml", "bodies.plate.velocity", "motion.velocity"});
+  EXPECT_INPUT_ERROR(base_toml() +
+                         "\n[bodies.plate.motion]\nvelocity = [1.0, 0.0]\nhistory = "
+                         "\"ramp\"\n",
+                     {"bad.toml", "bodies.plate.motion.rise_time"});
+}
+
 TEST(CaseErrors, VertexFileProblemsNameTheLine) {
   const std::string good =
       testing::write_temp_file("good.csv", "x,y\n0.3,0\n# a comment\n0.4, 0\n\n0.35 0.05\n");

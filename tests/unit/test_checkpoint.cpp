@@ -69,6 +69,8 @@ void expect_same_state(Simulation& a, Simulation& b) {
     EXPECT_EQ(u.surface.y, v.surface.y) << u.name;
     EXPECT_EQ(u.surface.target_fx, v.surface.target_fx) << u.name;
   }
+  for (std::size_t k = 0; k < a.state().rigid_bodies.size(); ++k)
+    EXPECT_TRUE(same_bits(a.state().rigid_bodies[k].work, b.state().rigid_bodies[k].work));
   const Diagnostics da = a.diagnostics(), db = b.diagnostics();
   EXPECT_TRUE(same_bits(da.kinetic_energy, db.kinetic_energy));
   EXPECT_TRUE(same_bits(da.strain_energy, db.strain_energy));
@@ -189,6 +191,12 @@ TEST(Checkpoint, ResumeInTheMiddleOfAPressure) {
   expect_resume_is_seamless({"l0=0.001"}, 30, 30, 2, "cases/disk_blast.toml");
   expect_resume_is_seamless({"loads.shock.history=\"ramp\"", "loads.shock.rise_time=2e-6"}, 100,
                             100, 2, "cases/shock_rod_pressure.toml");
+}
+
+// A driven body's work is part of the state: a checkpoint in the middle of
+// the grips' ramp.
+TEST(Checkpoint, ResumeInTheMiddleOfAPrescribedMotion) {
+  expect_resume_is_seamless({"l0=0.001"}, 200, 200, 2, "cases/holed_plate_grips.toml");
 }
 
 TEST(Checkpoint, RefusesAnotherBondTable) {
