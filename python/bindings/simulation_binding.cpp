@@ -99,6 +99,7 @@ py::dict diagnostics_dict(const Diagnostics& d) {
   out["momentum_y"] = d.momentum_y;
   out["angular_momentum"] = d.angular_momentum;
   out["max_speed"] = d.max_speed;
+  out["damping_loss"] = d.damping_loss;      // 0 without [damping]
   out["contact_energy"] = d.contact_energy;  // 0 without [contact]
   out["contact_min_distance"] = d.contact_min_distance;
   return out;

@@ -20,7 +20,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from . import run_data
+from . import plot_shapes, run_data
 
 KIND_WALL, KIND_ELASTIC, KIND_RIGID = 0, 1, 2
 KIND_NAMES = {KIND_WALL: "wall", KIND_ELASTIC: "elastic", KIND_RIGID: "rigid"}
@@ -35,6 +35,8 @@ PALETTE = {
 # the colour map's pale middle.
 GREYS = {KIND_RIGID: ["#6f6f6f", "#8f8f8f", "#555555"], KIND_WALL: ["#2f2f2f", "#474747"]}
 BLOWUP_COLOUR = "#d4001a"
+OUTLINE_COLOUR = "#404040"   # a shaped body's outline at t = 0
+PRESSURE_COLOUR = "#5e3c99"  # a pressure load's arrows
 COLOUR_MAP = "coolwarm"
 MAX_COLUMNS = 6
 FIGURE_WIDTH_IN = 14.6   # frames.png: 2190 px at 150 dpi
@@ -538,9 +540,11 @@ def draw_colourbar(fig, mappable, scale, layout):
             "data_range": scale["data_range"], "extend": extend}
 
 
-def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l0, blowup):
-    """Every frame's panel, the last one marked after a blow-up; returns the
-    panels' descriptions and the field's scatter (None without a field)."""
+def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l0, blowup,
+                      shapes):
+    """Every frame's panel (with the shaped bodies' outlines and the pressure
+    loads' arrows of `shapes`), the last one marked after a blow-up; returns
+    the panels' descriptions and the field's scatter (None without a field)."""
     # Dots about one lattice spacing across.
     points_per_mm = layout.panel_w * 72.0 / view.width
     size = (0.9 * l0 * 1e3 * points_per_mm) ** 2
@@ -549,6 +553,9 @@ def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l
     for k, frame in enumerate(frames):
         ax = fig.add_axes(layout.panel_box(k))
         drawn = draw_particles(ax, frame, view, colours, kinds, field, scale, norm, size)
+        plot_shapes.draw_outlines(ax, shapes["outlines"], view, OUTLINE_COLOUR)
+        plot_shapes.draw_pressure_arrows(ax, frame, shapes["loaded"], view,
+                                         0.06 * max(view.width, 1e-9), PRESSURE_COLOUR)
         mappable = drawn if drawn is not None else mappable
         frame_axes(ax, view.across, view.down, labelsize=8, ticklength=3)
         label = f"t = {ms(frame.time)}"
@@ -566,11 +573,17 @@ def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l
     return panels, mappable
 
 
-def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blowup, footnote):
+def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blowup, footnote,
+                case=None):
     """Writes FOLDER/frames.png: the frames in a grid, one colour scale over
-    every panel (or body colours), and returns what was drawn."""
+    every panel (or body colours), the shaped bodies' reference outlines and
+    the pressure loads' arrows (from `case`, the resolved case), and returns
+    what was drawn."""
     field = COLOUR_FIELDS.get(color_by)
     colours, kinds = body_colours(frames, body_names, field is not None)
+    case = case or {}
+    shapes = {"outlines": plot_shapes.shape_outlines(case),
+              "loaded": plot_shapes.loaded_particles(case, list(body_names), frames[0], l0)}
     scale = colour_scale(frames, field) if field else None
     view = FrameView(frames, l0)
     n = len(frames)
@@ -582,11 +595,19 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
         blowup_words(blowup) + "; the last frame is the last good state" if blowup else None)
     notes = wrap_to(footnote, layout.fig_w - 0.2, 7)
     handles, labels = frames_legend(colours, kinds, body_names, scale, blowup)
+    if shapes["outlines"]:
+        handles.append(Line2D([], [], color=OUTLINE_COLOUR, linewidth=0.9,
+                              linestyle=(0, (3, 2))))
+        labels.append("outline at t = 0")
+    if any(len(v) for v in shapes["loaded"].values()):
+        handles.append(Line2D([], [], color=PRESSURE_COLOUR, marker=r"$\rightarrow$",
+                              linestyle="", markersize=10))
+        labels.append("pressure on the loaded surface")
     legend_columns, legend_rows = legend_shape(labels, layout.fig_w)
     layout.set_height(top + 0.12, 0.62 + 0.36 * legend_rows + 0.14 + 0.12 * len(notes))
     fig = Figure(figsize=(layout.fig_w, layout.fig_h))
     panels, mappable = draw_frame_panels(fig, frames, layout, view, colours, kinds, field,
-                                         scale, l0, blowup)
+                                         scale, l0, blowup, shapes)
     fig.legend(handles, labels, loc="lower center", ncol=legend_columns, frameon=False,
                fontsize=9.5, bbox_to_anchor=(0.5, (0.1 + 0.12 * len(notes)) / layout.fig_h))
     colorbar = draw_colourbar(fig, mappable, scale, layout) if mappable is not None else None
@@ -598,6 +619,8 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
             "orientation": "x across the page" if view.x_along else "x down the page",
             "color": color_by, "title": title, "panels": panels, "colorbar": colorbar,
             "legend": labels, "footnote": footnote,
+            "outlines": {b: len(lines) for b, lines in shapes["outlines"].items()},
+            "pressure_particles": {name: len(v) for name, v in shapes["loaded"].items()},
             "blowup": None if not blowup else {
                 "time": blowup["time"], "criterion": blowup["criterion"],
                 "last_good_state_panel": n - 1,
@@ -821,8 +844,8 @@ def plot_run(folder, color="pressure", frames=12, dpi=150, reference=None):
     curve = (reference, read_reference(reference)) if reference else None
     history = history_to_draw(folder)
     chosen, body_names, l0, total = read_frames(folder, frames, COLOUR_FIELDS.get(color))
-    title, blowup, footnote = describe_run(folder, run_data.read_info(folder, default={}),
-                                           run_data.read_case(folder, default={}))
+    case = run_data.read_case(folder, default={})
+    title, blowup, footnote = describe_run(folder, run_data.read_info(folder, default={}), case)
     return {"frames": plot_frames(folder, chosen, body_names, l0, total, color, dpi, title,
-                                  blowup, footnote),
+                                  blowup, footnote, case),
             "history": plot_history(folder, history, dpi, title, blowup, footnote, curve)}

@@ -24,7 +24,8 @@ class Frame:
     """One frame of frames.h5: `step`, `time`, and each field read on first
     access as a numpy array in id order (`id`, `kind`, `body`, `position`,
     `velocity` (N x 2), `rotation`, `angular_velocity`, `volumetric_strain`,
-    `pressure`)."""
+    `pressure`, `surface` (1 on a body's surface), `normal` (its outward unit
+    normal, N x 2))."""
 
     def __init__(self, path, name, step, time):
         self._path, self._name = path, name

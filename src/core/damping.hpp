@@ -1,6 +1,6 @@
 #pragma once
 // Mass-proportional damping over a window of steps (dynamic relaxation,
-// MODEL.md section 2.11): a force -c m v on every moving particle (and
+// MODEL.md section 2.16): a force -c m v on every moving particle (and
 // -c I omega on its spin), taken at the step's mean velocity, so each
 // velocity update is v+ = ((1 - c dt/2) v- + dt f/m) / (1 + c dt/2), stable
 // for any c. Each particle keeps the energy its damping force took out of

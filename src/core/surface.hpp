@@ -1,5 +1,5 @@
 #pragma once
-// A body's surface (MODEL.md section 2.10): closed chains of nodes on its
+// A body's surface (MODEL.md section 2.15): closed chains of nodes on its
 // shape's boundary loops (src/core/region_boundary.hpp), each node an
 // affine combination of particle positions, x_k = sum_j w_kj x_j with
 // sum_j w_kj = 1, that lies exactly on the boundary in the reference

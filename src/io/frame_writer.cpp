@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "src/core/region_boundary.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/hdf5_file.hpp"
 
@@ -20,6 +23,8 @@ const std::vector<XdmfField>& frame_fields() {
       {"angular_velocity", "Float", 8, 1},
       {"volumetric_strain", "Float", 8, 1},
       {"pressure", "Float", 8, 1},
+      {"surface", "Char", 1, 1},
+      {"normal", "Float", 8, 2},
   };
   return fields;
 }
@@ -142,6 +147,35 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec) {
     body[k] = p.body[order[k]];
     kind[k] = static_cast<std::int8_t>(p.kind[order[k]]);
   }
+  // The surfaces' particles and their outward normals in the current state.
+  if (!surfaces_built_) {
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      const Shape& shape = spec.bodies[b].shape;
+      if (spec.bodies[b].kind == Kind::wall || !boundary_problem(shape).empty()) continue;
+      surfaces_.emplace_back(state.body_ranges[b].begin,
+                             build_surface(shape, fill_shape(shape, spec.l0), spec.l0));
+    }
+    surfaces_built_ = true;
+  }
+  std::vector<double> nx(n, 0.0), ny(n, 0.0), ax, ay;
+  std::vector<std::int8_t> on_surface(n, 0);
+  for (const auto& [first, surface] : surfaces_) {
+    const std::size_t sites =
+        static_cast<std::size_t>(std::max_element(surface.site.begin(), surface.site.end())[0] + 1);
+    ax.assign(sites, 0.0);
+    ay.assign(sites, 0.0);
+    site_area_vectors(surface, p.x.data(), p.y.data(), first, ax, ay);
+    for (const std::uint32_t h : surface.host) {
+      const double length = std::hypot(ax[h], ay[h]);
+      on_surface[first + h] = 1;
+      if (length > 0) {
+        nx[first + h] = ax[h] / length;
+        ny[first + h] = ay[h] / length;
+      }
+    }
+  }
+  std::vector<std::int8_t> surface_flag(n);
+  for (std::size_t k = 0; k < n; ++k) surface_flag[k] = on_surface[order[k]];
   const int level = compression_;
   group.write("id", id, 1, level);
   group.write("kind", kind, 1, level);
@@ -152,6 +186,8 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec) {
   group.write("angular_velocity", gather(p.omega), 1, level);
   group.write("volumetric_strain", gather(p.strain), 1, level);
   group.write("pressure", gather(p.pressure), 1, level);
+  group.write("surface", surface_flag, 1, level);
+  group.write("normal", gather_pair(nx, ny), 2, level);
   file_->file.flush();  // a crashed run keeps its frames in the staging file
   frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
 }

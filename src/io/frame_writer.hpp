@@ -8,6 +8,7 @@
 
 #include "src/case/case_spec.hpp"
 #include "src/core/solver_state.hpp"
+#include "src/core/surface.hpp"
 #include "src/io/xdmf_writer.hpp"
 
 namespace mpsolid {
@@ -43,6 +44,11 @@ class FrameWriter {
   std::filesystem::path path_;
   std::unique_ptr<File> file_;
   std::vector<XdmfFrame> frames_;
+  // Each elastic or rigid body's surface with its first storage index, for
+  // the frames' surface flag and normal, built at the first frame (bodies
+  // whose holes touch have none).
+  std::vector<std::pair<std::size_t, Surface>> surfaces_;
+  bool surfaces_built_ = false;
   int first_frame_ = 0;
   int compression_ = 0;
   std::size_t particles_ = 0;

@@ -286,6 +286,26 @@ class CaseValues(unittest.TestCase):
             case.copy().set("bodies.wedge.vertices", [(0.3, 0.0), (0.34, 0.03), (0.34, 0.0),
                                                       (0.3, 0.03)]).resolved()
 
+    def test_pressure_damping_and_motion_from_python(self):
+        # A pressure on the plate's face, damping, and a driven wall, as Python values.
+        case = coarse_case()
+        case.set("loads.shock", {"type": "pressure", "body": "plate", "pressure": 1.8e5,
+                                 "face": "left", "history": "ramp", "rise_time": 1e-6})
+        case.set("damping", {"coefficient": 1000.0, "end": 5e-6})
+        case.set("bodies.wall.motion", {"velocity": [-0.5, 0.0]})
+        resolved = case.resolved()
+        self.assertEqual(resolved["loads"]["shock"]["face"], "left")
+        self.assertEqual(resolved["damping"]["end"], 5e-6)
+        self.assertEqual(resolved["bodies"]["wall"]["kind"], "rigid")  # a driven wall
+        self.assertEqual(resolved["bodies"]["wall"]["motion"]["velocity"], [-0.5, 0.0])
+        again = mpsolid.Case.from_text(case.resolved_toml(), name="resolved.toml")
+        self.assertEqual(again.resolved(), resolved)
+        sim = mpsolid.Simulation(case, threads=1)
+        sim.advance(200)
+        self.assertGreater(sim.diagnostics()["external_work"], 0.0)
+        with self.assertRaises(mpsolid.InputError):  # a rectangle has no such face
+            case.copy().set("loads.shock.face", "front").resolved()
+
     def test_copy_is_independent(self):
         case = coarse_case()
         other = case.copy().set("l0", 0.002)

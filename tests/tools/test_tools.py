@@ -6,7 +6,7 @@
 - frames.xdmf parses as XML, lists every frame of frames.h5 at its time, and
   every dataset it references exists in frames.h5 with the shape and type it
   states; every field (id, kind, body, velocity, rotation, angular velocity,
-  strain, pressure) is there;
+  strain, pressure, surface flag, normal) is there;
 - output.compression = 4 gives deflated datasets with the same values;
 - tools/plot.py writes frames.png and history.png, valid PNGs of sensible
   size, also with --color pressure, and fails clearly (exit 2,
@@ -20,7 +20,8 @@
   --reference curve drawn on the displacement panel (a missing file: exit
   2); a blow-up run (the 55.9 kN rod with the paper model, exit 3) marked on
   every time panel with its criterion and its last frame as the last good
-  state;
+  state; a ring under internal pressure drawn with its two outlines and
+  arrows on its inner surface, whose frames' normals point into the hole;
 - tools/plot.py is an executable (#!/usr/bin/python3) and, under a Python
   without h5py or matplotlib, exits 2 with one line naming the package and
   /usr/bin/python3, no traceback.
@@ -43,8 +44,9 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PLOT = os.path.join(ROOT, "tools", "plot.py")
 CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
 CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
+CASE_RING = os.path.join(ROOT, "cases", "ring_pressure.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
-          "pressure"}
+          "pressure", "surface", "normal"}
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checks import check, verdict  # noqa: E402
 
@@ -117,7 +119,7 @@ def check_xdmf(folder):
                 elif dtype is None or f[dataset].dtype != dtype:
                     bad.append(f"{dataset}: type {f[dataset].dtype}, XDMF says "
                                f"{item.get('NumberType')} {item.get('Precision')}")
-        check(not bad and items == 9 * len(frames),
+        check(not bad and items == (len(FIELDS) + 1) * len(frames),
               f"every dataset frames.xdmf references ({items}) exists with its shape and type",
               "; ".join(bad[:5]))
 
@@ -365,6 +367,30 @@ def check_missing_libraries(folder):
               f"{package} and /usr/bin/python3", f"exit {result.returncode}: {result.stderr}")
 
 
+def check_shapes(folder):
+    """A shaped body's outlines and a pressure's arrows, and the frames' surface."""
+    code, drawn, output = describe(folder)
+    if not check(code == 0 and drawn is not None, "plot.py --describe on the ring exits 0", output):
+        return
+    frames = drawn["frames"]
+    check(frames["outlines"] == {"ring": 2} and "outline at t = 0" in frames["legend"],
+          "the ring's two circles are drawn over its particles, with a legend entry",
+          f"{frames['outlines']}, {frames['legend']}")
+    with h5py.File(os.path.join(folder, "frames.h5"), "r") as f:
+        first = f["frames"]["000000"]
+        position, surface, normal = first["position"][()], first["surface"][()], first["normal"][()]
+    r = np.hypot(position[:, 0], position[:, 1])
+    inner = (surface == 1) & (r < 0.0105)
+    outward = np.einsum("ij,ij->i", normal[inner], -position[inner] / r[inner, None])
+    check(frames["pressure_particles"].get("inflate", 0) == inner.sum() > 50
+          and "pressure on the loaded surface" in frames["legend"],
+          "the pressure's arrows stand on the inner surface's particles, with a legend entry",
+          f"{frames['pressure_particles']} vs {inner.sum()} inner surface particles")
+    check(outward.min() > 0.9 and np.all(normal[surface == 0] == 0),
+          "the inner surface's normals point into the hole, interior particles have none",
+          f"smallest cosine {outward.min():.3f}")
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -387,6 +413,11 @@ def main():
         if check(run_mpsolid(binary, grid, "output.frame_interval=2e-6") == 0,
                  "a short run with 26 frames"):
             check_pictures(grid)
+        ring = os.path.join(tmp, "ring")
+        if check(run_mpsolid(binary, ring, "time.end=2e-4", "output.frame_interval=5e-5",
+                             case=CASE_RING, short=False) == 0,
+                 "a short run of the ring under internal pressure"):
+            check_shapes(ring)
         blowup = os.path.join(tmp, "blowup")
         if check(run_mpsolid(binary, blowup, "model=paper", "time.end=0.001", case=CASE_55KN,
                              short=False, expect=3) == 3,
