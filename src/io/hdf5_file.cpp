@@ -32,6 +32,9 @@ class Handle {
 
 void silence_hdf5() {
   static const bool done = [] {
+    // Every file is closed by its owner. HDF5's own clean-up at exit would
+    // close again a file whose close failed (a full disk) and crash in it.
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures become exceptions
     return true;
   }();
