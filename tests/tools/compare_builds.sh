@@ -8,7 +8,9 @@
 # the final checkpoint). Use it for a change that must not move a bit, and
 # to show how far one that may has moved them.
 #   tests/tools/compare_builds.sh OLD_MPSOLID NEW_MPSOLID [WORK_DIR]
-# Exits 0 if everything is identical, 1 otherwise (the differences printed).
+# Exits 0 if everything is identical, 1 otherwise (the differences printed);
+# datasets only the new build writes (a new output field) are listed, not
+# counted as differences.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 [ $# -ge 2 ] || { echo "usage: tests/tools/compare_builds.sh OLD_MPSOLID NEW_MPSOLID [WORK_DIR]" >&2; exit 2; }
