@@ -55,21 +55,19 @@ void shift_particles(PressureSurface& surface, std::size_t shift) {
 
 namespace {
 // Node k's position in the current state.
-std::array<double, 2> node_now(const ParticleStore& p, const PressureSurface& s, std::size_t k) {
-  double x = 0, y = 0;
-  for (std::uint32_t w = s.offsets[k]; w < s.offsets[k + 1]; ++w) {
-    x += s.weight[w] * p.x[s.particle[w]];
-    y += s.weight[w] * p.y[s.particle[w]];
-  }
-  return {x, y};
+Point2 node_now(const ParticleStore& p, const PressureSurface& s, std::size_t k) {
+  return affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
 }
 
-// The work of the running step's node forces from its start to now.
-double running_pressure_work(const ParticleStore& p, const PressureSurface& s) {
+// The work of the running step's node forces from its start to now, calling
+// each(k, position) with every node's current position (computed once).
+template <class Each>
+double running_pressure_work(const ParticleStore& p, const PressureSurface& s, Each&& each) {
   double work = 0;
   for (std::size_t k = 0; k < s.nodes(); ++k) {
-    const auto [x, y] = node_now(p, s, k);
-    work += s.fx[k] * (x - s.x[k]) + s.fy[k] * (y - s.y[k]);
+    const Point2 now = node_now(p, s, k);
+    work += s.fx[k] * (now.x - s.x[k]) + s.fy[k] * (now.y - s.y[k]);
+    each(k, now);
   }
   return work;
 }
@@ -78,13 +76,13 @@ double running_pressure_work(const ParticleStore& p, const PressureSurface& s) {
 // nodes' positions and this step's forces.
 void activate_pressure(const ParticleStore& p, StepLoad& load, double time) {
   PressureSurface& s = load.surface;
-  if (load.active) load.work += running_pressure_work(p, s);
+  // The step's start positions are the current ones.
+  const double work = running_pressure_work(p, s, [&](std::size_t k, Point2 now) {
+    s.x[k] = now.x;
+    s.y[k] = now.y;
+  });
+  if (load.active) load.work += work;
   load.active = true;
-  for (std::size_t k = 0; k < s.nodes(); ++k) {
-    const auto [x, y] = node_now(p, s, k);
-    s.x[k] = x;
-    s.y[k] = y;
-  }
   if (!load.history.constant()) load.factor = load.history.factor(time);
   pressure_forces(load);
 }
@@ -168,7 +166,8 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
 
 double load_work(const ParticleStore& p, const StepLoad& load) {
   if (!load.active) return 0.0;
-  if (load.is_pressure()) return load.work + running_pressure_work(p, load.surface);
+  if (load.is_pressure())
+    return load.work + running_pressure_work(p, load.surface, [](std::size_t, Point2) {});
   double cx = 0, cy = 0;
   centroid(p, load.range, cx, cy);
   if (load.history.constant()) return load.fx * (cx - load.cx_on) + load.fy * (cy - load.cy_on);

@@ -62,15 +62,25 @@ struct SurfaceSelection {
 std::vector<std::uint32_t> select_segments(const Surface& surface,
                                            const SurfaceSelection& selection);
 
+// Point k of a list of affine combinations (CSR: `offsets`, the points'
+// `indices` into x, y from `first`, and their `weights`): a surface's node,
+// or a pressure's node over storage indices.
+inline Point2 affine_point(const std::vector<std::uint32_t>& offsets,
+                           const std::vector<std::uint32_t>& indices,
+                           const std::vector<double>& weights, std::size_t k, const double* x,
+                           const double* y, std::size_t first) {
+  double px = 0, py = 0;
+  for (std::uint32_t w = offsets[k]; w < offsets[k + 1]; ++w) {
+    px += weights[w] * x[first + indices[w]];
+    py += weights[w] * y[first + indices[w]];
+  }
+  return {px, py};
+}
+
 // Node k's position, its sites' positions read from x, y at `first` + site.
 inline Point2 node_position(const Surface& s, std::size_t k, const double* x, const double* y,
                             std::size_t first) {
-  double px = 0, py = 0;
-  for (std::uint32_t w = s.offsets[k]; w < s.offsets[k + 1]; ++w) {
-    px += s.weight[w] * x[first + s.site[w]];
-    py += s.weight[w] * y[first + s.site[w]];
-  }
-  return {px, py};
+  return affine_point(s.offsets, s.site, s.weight, k, x, y, first);
 }
 
 // Each site's outward area vector per unit depth, in the configuration
