@@ -42,15 +42,40 @@ PressureSurface make_pressure_surface(const Surface& surface,
   for (const std::uint32_t i : ps.particle)
     ps.slot.push_back(static_cast<std::uint32_t>(
         std::lower_bound(ps.targets.begin(), ps.targets.end(), i) - ps.targets.begin()));
+  for (std::uint32_t k = 0; k < ps.nodes(); ++k) ps.hosted.push_back(k);
   for (auto* v : {&ps.x, &ps.y, &ps.fx, &ps.fy}) v->assign(ps.nodes(), 0.0);
   ps.target_fx.assign(ps.targets.size(), 0.0);
   ps.target_fy.assign(ps.targets.size(), 0.0);
   return ps;
 }
 
-void shift_particles(PressureSurface& surface, std::size_t shift) {
-  for (auto* v : {&surface.particle, &surface.targets})
-    for (std::uint32_t& i : *v) i = static_cast<std::uint32_t>(i - shift);
+PressureSurface local_pressure_surface(const PressureSurface& whole,
+                                       const std::function<std::uint32_t(std::uint32_t)>& local_of,
+                                       const std::function<bool(std::uint32_t)>& owned) {
+  constexpr std::uint32_t elsewhere = PressureSurface::kElsewhere;
+  PressureSurface s = whole;
+  s.hosted.clear();
+  s.targets.clear();
+  for (std::uint32_t& i : s.particle) i = local_of(i);
+  for (std::uint32_t k = 0; k < s.nodes(); ++k) {
+    // The host's lattice neighbours are its bond partners: held wherever it is owned.
+    const std::uint32_t host = s.particle[s.offsets[k]];
+    if (host != elsewhere && owned(host)) s.hosted.push_back(k);
+  }
+  for (const std::uint32_t i : s.particle)
+    if (i != elsewhere && owned(i)) s.targets.push_back(i);
+  std::sort(s.targets.begin(), s.targets.end());
+  s.targets.erase(std::unique(s.targets.begin(), s.targets.end()), s.targets.end());
+  s.slot.clear();
+  for (const std::uint32_t i : s.particle) {
+    const auto at = std::lower_bound(s.targets.begin(), s.targets.end(), i);
+    s.slot.push_back(at != s.targets.end() && *at == i
+                         ? static_cast<std::uint32_t>(at - s.targets.begin())
+                         : elsewhere);
+  }
+  s.target_fx.assign(s.targets.size(), 0.0);
+  s.target_fy.assign(s.targets.size(), 0.0);
+  return s;
 }
 
 namespace {
@@ -59,32 +84,69 @@ Point2 node_now(const ParticleStore& p, const PressureSurface& s, std::size_t k)
   return affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
 }
 
-// The work of the running step's node forces from its start to now, calling
-// each(k, position) with every node's current position (computed once).
-template <class Each>
-double running_pressure_work(const ParticleStore& p, const PressureSurface& s, Each&& each) {
+// The work of the running step's node forces from its start to now (the
+// whole state: every node's particles at hand).
+double running_pressure_work(const ParticleStore& p, const PressureSurface& s) {
   double work = 0;
   for (std::size_t k = 0; k < s.nodes(); ++k) {
     const Point2 now = node_now(p, s, k);
     work += s.fx[k] * (now.x - s.x[k]) + s.fy[k] * (now.y - s.y[k]);
-    each(k, now);
   }
   return work;
 }
 
-// A pressure load at the start of a step: the previous step's work, the
-// nodes' positions and this step's forces.
-void activate_pressure(const ParticleStore& p, StepLoad& load, double time) {
+// A pressure load at the start of a step, once its nodes' start positions
+// (nx, ny) are known: the previous step's work (as running_pressure_work
+// sums it), the positions and this step's forces.
+void activate_pressure(StepLoad& load, const std::vector<double>& nx, const std::vector<double>& ny,
+                       double time) {
   PressureSurface& s = load.surface;
-  // The step's start positions are the current ones.
-  const double work = running_pressure_work(p, s, [&](std::size_t k, Point2 now) {
-    s.x[k] = now.x;
-    s.y[k] = now.y;
-  });
+  double work = 0;
+  for (std::size_t k = 0; k < s.nodes(); ++k) {
+    work += s.fx[k] * (nx[k] - s.x[k]) + s.fy[k] * (ny[k] - s.y[k]);
+    s.x[k] = nx[k];
+    s.y[k] = ny[k];
+  }
   if (load.active) load.work += work;
   load.active = true;
   if (!load.history.constant()) load.factor = load.history.factor(time);
   pressure_forces(load);
+}
+
+// The pressure loads on at `step`: each part positions its hosted nodes,
+// the parts share them (with `gather`), and every part activates each load
+// with every node.
+void activate_pressures(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
+                        double dt, const GatherParts* gather) {
+  std::vector<std::vector<double>> nx(loads.size()), ny(loads.size());
+  std::vector<double> mine;  // (load, node, x, y) of the hosted nodes
+  bool any = false;
+  for (std::size_t l = 0; l < loads.size(); ++l) {
+    const StepLoad& load = loads[l];
+    if (!load.is_pressure() || step < load.first_step) continue;
+    any = true;
+    nx[l].assign(load.surface.nodes(), 0.0);
+    ny[l].assign(load.surface.nodes(), 0.0);
+    for (const std::uint32_t k : load.surface.hosted) {
+      const Point2 now = node_now(p, load.surface, k);
+      nx[l][k] = now.x;
+      ny[l][k] = now.y;
+      if (gather)
+        mine.insert(mine.end(), {static_cast<double>(l), static_cast<double>(k), now.x, now.y});
+    }
+  }
+  if (!any) return;
+  if (gather) {
+    const std::vector<double> all = (*gather)(mine);
+    for (std::size_t at = 0; at + 4 <= all.size(); at += 4) {
+      const auto l = static_cast<std::size_t>(all[at]), k = static_cast<std::size_t>(all[at + 1]);
+      nx[l][k] = all[at + 2];
+      ny[l][k] = all[at + 3];
+    }
+  }
+  for (std::size_t l = 0; l < loads.size(); ++l)
+    if (!nx[l].empty())
+      activate_pressure(loads[l], nx[l], ny[l], static_cast<double>(step) * dt - loads[l].start);
 }
 }  // namespace
 
@@ -107,19 +169,21 @@ void pressure_forces(StepLoad& load) {
   std::fill(s.target_fy.begin(), s.target_fy.end(), 0.0);
   for (std::size_t k = 0; k < s.nodes(); ++k)
     for (std::uint32_t w = s.offsets[k]; w < s.offsets[k + 1]; ++w) {
+      if (s.slot[w] == PressureSurface::kElsewhere) continue;  // another part's particle
       s.target_fx[s.slot[w]] += s.weight[w] * s.fx[k];
       s.target_fy[s.slot[w]] += s.weight[w] * s.fy[k];
     }
 }
 
+bool any_pressure(const std::vector<StepLoad>& loads) {
+  return std::any_of(loads.begin(), loads.end(), [](const StepLoad& l) { return l.is_pressure(); });
+}
+
 void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
-                    double dt) {
+                    double dt, const GatherParts* gather) {
+  activate_pressures(p, loads, step, dt, gather);
   for (StepLoad& load : loads) {
-    if (step < load.first_step) continue;
-    if (load.is_pressure()) {
-      activate_pressure(p, load, static_cast<double>(step) * dt - load.start);
-      continue;
-    }
+    if (step < load.first_step || load.is_pressure()) continue;
     const bool varying = !load.history.constant();
     if (!load.active) {
       centroid(p, load.range, load.cx_on, load.cy_on);
@@ -166,8 +230,7 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
 
 double load_work(const ParticleStore& p, const StepLoad& load) {
   if (!load.active) return 0.0;
-  if (load.is_pressure())
-    return load.work + running_pressure_work(p, load.surface, [](std::size_t, Point2) {});
+  if (load.is_pressure()) return load.work + running_pressure_work(p, load.surface);
   double cx = 0, cy = 0;
   centroid(p, load.range, cx, cy);
   if (load.history.constant()) return load.fx * (cx - load.cx_on) + load.fy * (cy - load.cy_on);

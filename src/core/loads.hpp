@@ -4,6 +4,8 @@
 // by a body's particles, or a pressure on part of its surface
 // (src/core/surface.hpp) along the current outward normals (a follower load).
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,16 +18,28 @@ namespace mpsolid {
 // A pressure's part of a body's surface: its selected segments, the nodes at
 // their ends (weights over storage indices), and the running step's node
 // positions and forces.
+//
+// A body may be split between ranks (or threads stepping their own parts):
+// every part holds every node and segment, but positions only the nodes
+// whose host (a node's first weight) it owns, from the host's lattice
+// neighbours (its ghosts at most); the parts then share those positions, so
+// each computes every node's force, and the work, with the serial bits, and
+// adds to its own particles their part.
 struct PressureSurface {
+  static constexpr std::uint32_t kElsewhere = std::numeric_limits<std::uint32_t>::max();
   double pressure = 0;  // Pa at a factor of 1
   double depth = 0;     // m
+  // Node k's weights over [offsets[k], offsets[k + 1]); a particle this
+  // part does not hold is kElsewhere (never read: its node is not `hosted`).
   std::vector<std::uint32_t> offsets{0}, particle;
   std::vector<double> weight;
+  std::vector<std::uint32_t> hosted;    // the nodes this part positions, increasing
   std::vector<std::uint32_t> from, to;  // each segment's nodes
   // The running step: each node's position at its start, and its force.
   std::vector<double> x, y, fx, fy;
-  // The particles the nodes' forces reach (increasing), each weight's place
-  // among them, and their forces in the running step.
+  // This part's particles that the nodes' forces reach (increasing), each
+  // weight's place among them (kElsewhere for another part's particle), and
+  // their forces in the running step.
   std::vector<std::uint32_t> targets, slot;
   std::vector<double> target_fx, target_fy;
   std::size_t nodes() const { return offsets.size() - 1; }
@@ -36,8 +50,12 @@ struct PressureSurface {
 PressureSurface make_pressure_surface(const Surface& surface,
                                       const std::vector<std::uint32_t>& segments, std::size_t first,
                                       double pressure, double depth);
-// Shifts its storage indices by `shift` (down): a rank's local indices.
-void shift_particles(PressureSurface& surface, std::size_t shift);
+// The surface as a part sees it: `local_of(i)` is the part's index of
+// storage index i, or kElsewhere where it does not hold i; `owned(local)`
+// whether the part steps that particle.
+PressureSurface local_pressure_surface(const PressureSurface& whole,
+                                       const std::function<std::uint32_t(std::uint32_t)>& local_of,
+                                       const std::function<bool(std::uint32_t)>& owned);
 
 struct StepLoad {
   std::string name;
@@ -66,11 +84,21 @@ struct StepLoad {
 // load's running step is restored (a checkpoint, a rank's slice).
 void pressure_forces(StepLoad& load);
 
-// At the start of `step` (with its start-of-step positions): switches on
-// the loads that start at it, recording the body's centroid, and for the
-// varying ones adds the previous step's work and takes this step's factor.
+// Whether any of `loads` is a pressure.
+bool any_pressure(const std::vector<StepLoad>& loads);
+
+// Every part's values, concatenated in part order, on every part (a
+// collective call): how the parts of a split body share its nodes.
+using GatherParts = std::function<std::vector<double>(const std::vector<double>&)>;
+
+// At the start of `step` (with its start-of-step positions, ghosts
+// included): switches on the loads that start at it, recording the body's
+// centroid, and for the varying ones adds the previous step's work and
+// takes this step's factor. With `gather` (a part of several), the
+// pressure loads' hosted nodes are shared first: every part calls it once
+// in a step where a pressure load is on.
 void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
-                    double dt);
+                    double dt, const GatherParts* gather = nullptr);
 
 // Adds each active load's share to the forces of the particles in `block`
 // (after the force pass), loads in order. Serial: the step calls it per block.

@@ -105,9 +105,28 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   s.peak_work = global.peak_work;
   s.damping = global.damping;
   s.rigid_bodies = owned_items(global.rigid_bodies, layout, "rigid body");
-  s.loads = owned_items(global.loads, layout, "the body of load");
-  for (StepLoad& load : s.loads)
-    shift_particles(load.surface, layout.owned_global.begin - layout.owned.begin);
+  // A force on a body reads all its particles (its centroid): the body is
+  // owned whole. A pressure may be split: every rank holds it (its running
+  // step is the same on all), positioning the nodes it hosts.
+  for (const StepLoad& load : global.loads) {
+    if (!load.is_pressure()) {
+      for (StepLoad& kept : owned_items(std::vector<StepLoad>{load}, layout, "the body of load"))
+        s.loads.push_back(std::move(kept));
+      continue;
+    }
+    StepLoad local = load;
+    local.range = {};  // a pressure's work and forces go by its nodes
+    local.surface = local_pressure_surface(
+        load.surface,
+        [&](std::uint32_t g) {
+          const auto at = std::lower_bound(layout.global_of.begin(), layout.global_of.end(), g);
+          return at != layout.global_of.end() && *at == g
+                     ? static_cast<std::uint32_t>(at - layout.global_of.begin())
+                     : PressureSurface::kElsewhere;
+        },
+        [&](std::uint32_t i) { return i >= layout.owned.begin && i < layout.owned.end; });
+    s.loads.push_back(std::move(local));
+  }
   for (const HeldRange& hold : global.holds) {
     const Range mine = layout.owned_global;
     const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};

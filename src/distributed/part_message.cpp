@@ -160,7 +160,8 @@ void put_load(Writer& w, const StepLoad& l) {
   put_history(w, l.history);
   const PressureSurface& s = l.surface;
   for (const double v : {s.pressure, s.depth}) w.put(v);
-  for (const auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot}) w.put(*v);
+  for (const auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
+    w.put(*v);
   for (const auto* v : {&s.weight, &s.x, &s.y}) w.put(*v);
 }
 StepLoad get_load(Reader& r) {
@@ -176,7 +177,7 @@ StepLoad get_load(Reader& r) {
   l.history = get_history(r);
   PressureSurface& s = l.surface;
   for (double* v : {&s.pressure, &s.depth}) *v = r.get();
-  for (auto* v : {&s.offsets, &s.particle, &s.from, &s.to, &s.targets, &s.slot})
+  for (auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
     *v = r.get_vector<std::uint32_t>();
   for (auto* v : {&s.weight, &s.x, &s.y}) *v = r.get_vector<double>();
   s.fx.assign(s.nodes(), 0.0);

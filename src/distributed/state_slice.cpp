@@ -36,49 +36,57 @@ void write_fields(StepLoad& l, const double* in) {
   if (l.is_pressure() && l.active) pressure_forces(l);
 }
 
-bool inside(Range r, Range owned) {
-  return r.begin >= owned.begin && r.end <= owned.end;
+// Whether a slice of `owned` carries the item: a rigid body or a force
+// when the range owns it whole; a pressure when the slice carries the
+// shared items (every part holds it, with the same running step).
+bool carries(const RigidBody& b, Range owned, bool) {
+  return b.range.begin >= owned.begin && b.range.end <= owned.end;
+}
+bool carries(const StepLoad& l, Range owned, bool shared) {
+  return l.is_pressure() ? shared : l.range.begin >= owned.begin && l.range.end <= owned.end;
 }
 
 template <class Item>
-void append_items(const std::vector<Item>& items, Range owned, std::vector<double>& out) {
+void append_items(const std::vector<Item>& items, Range owned, bool shared,
+                  std::vector<double>& out) {
   for (const Item& item : items) {
-    if (!inside(item.range, owned)) continue;
+    if (!carries(item, owned, shared)) continue;
     out.resize(out.size() + fields_of(&item));
     read_fields(item, out.data() + out.size() - fields_of(&item));
   }
 }
 template <class Item>
-void read_items(std::vector<Item>& items, Range owned, const std::vector<double>& in,
+void read_items(std::vector<Item>& items, Range owned, bool shared, const std::vector<double>& in,
                 std::size_t& at) {
   for (Item& item : items) {
-    if (!inside(item.range, owned)) continue;
+    if (!carries(item, owned, shared)) continue;
     write_fields(item, in.data() + at);
     at += fields_of(&item);
   }
 }
 }  // namespace
 
-void StateSlice::append(const SolverState& state, Range owned, std::vector<double>& out) {
+void StateSlice::append(const SolverState& state, Range owned, std::vector<double>& out,
+                        bool shared) {
   for (const StateArray& a : kStateArrays) {
     const std::vector<double>& v = state.particles.*a.member;
     out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
                v.begin() + static_cast<long>(owned.end));
   }
-  append_items(state.rigid_bodies, owned, out);
-  append_items(state.loads, owned, out);
+  append_items(state.rigid_bodies, owned, shared, out);
+  append_items(state.loads, owned, shared, out);
 }
 
 void StateSlice::read(SolverState& state, Range owned, const std::vector<double>& in,
-                      std::size_t& at) {
+                      std::size_t& at, bool shared) {
   for (const StateArray& a : kStateArrays) {
     std::vector<double>& v = state.particles.*a.member;
     std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
                 v.begin() + static_cast<long>(owned.begin));
     at += owned.size();
   }
-  read_items(state.rigid_bodies, owned, in, at);
-  read_items(state.loads, owned, in, at);
+  read_items(state.rigid_bodies, owned, shared, in, at);
+  read_items(state.loads, owned, shared, in, at);
 }
 
 }  // namespace mpsolid

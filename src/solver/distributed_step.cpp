@@ -10,12 +10,34 @@ namespace mpsolid {
 
 Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align,
                               const std::vector<double>* cost) {
-  // Rigid and loaded bodies stay on one rank (their sums run over all of them).
+  // Rigid bodies and bodies under a force stay on one rank (their sums run
+  // over all of them); a pressure's body may be split (its nodes are shared).
   std::vector<Range> whole;
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
-  for (const StepLoad& l : global.loads) whole.push_back(l.range);
+  for (const StepLoad& l : global.loads)
+    if (!l.is_pressure()) whole.push_back(l.range);
   return cost ? decompose_costs(*cost, ranks, whole, align)
               : decompose(global.bonds, ranks, whole, align);
+}
+
+std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vector<double>& mine,
+                                          HaloCost& cost) {
+  CommunicationTime t(cost);
+  // Each rank's values after their count, so that each message is tallied.
+  std::vector<double> framed{static_cast<double>(mine.size())};
+  framed.insert(framed.end(), mine.begin(), mine.end());
+  const std::vector<double> all = world.all_gather(framed);
+  HaloTally& tally = cost.tally("pressure nodes");
+  std::vector<double> values;
+  std::size_t at = 0;
+  for (int r = 0; r < world.size(); ++r) {
+    const auto n = static_cast<std::size_t>(all.at(at));
+    if (r != world.rank()) tally.received(8 * (n + 1));
+    values.insert(values.end(), all.begin() + static_cast<long>(at + 1),
+                  all.begin() + static_cast<long>(at + 1 + n));
+    at += n + 1;
+  }
+  return values;
 }
 
 RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {

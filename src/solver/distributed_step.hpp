@@ -65,6 +65,11 @@ class PassTime {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Every rank's `mine` concatenated in rank order (RankGroup::all_gather),
+// what came from the other ranks tallied as the "pressure nodes" halo.
+std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vector<double>& mine,
+                                          HaloCost& cost);
+
 // The step on a rank's part: its owned particles, its ghosts' halos, contact
 // over the ranks, each pass of a step timed without its halos (the fields
 // round, Timing::off, is not a step's).
@@ -72,7 +77,11 @@ class OverRanks {
  public:
   enum class Timing { on, off };
   OverRanks(RankPart& part, const RankGroup& world, Timing timing = Timing::on)
-      : halo_{part, world}, timed_(timing == Timing::on) {}
+      : halo_{part, world},
+        gather_([&world, &part](const std::vector<double>& mine) {
+          return gather_pressure_nodes(world, mine, part.halo_cost);
+        }),
+        timed_(timing == Timing::on) {}
   Range own(const ParticleStore&) const { return halo_.part.layout.owned; }
   // The rank's one stepping thread does the serial bookkeeping of its part.
   bool leads() const { return true; }
@@ -89,6 +98,8 @@ class OverRanks {
     void finish() { finish_halo(world, part.halo, part.halo_cost); }
   };
   Halo& halo() { return halo_; }
+  // How the parts of a split pressure's body share its nodes.
+  const GatherParts* gather_parts() const { return &gather_; }
   void contact_pass(SolverState& s, std::int64_t step) {
     RankPart& part = halo_.part;
     rank_contact_pass(part.contact, s, part.layout, halo_.world, step, part.halo_cost);
@@ -105,6 +116,7 @@ class OverRanks {
 
  private:
   Halo halo_;  // the part and the world, which every method reads
+  GatherParts gather_;
   bool timed_;
 };
 
@@ -130,8 +142,8 @@ struct RankFields {
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
                       ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields);
 
-// The cut of the set-up state `global` over `ranks`, rigid and loaded
-// bodies kept whole, each cut at a multiple of `align` particles, balancing
+// The cut of the set-up state `global` over `ranks`, rigid bodies and
+// bodies under a force kept whole, each cut at a multiple of `align` particles, balancing
 // `cost` per particle (null: particle_work).
 Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align = kSumChunk,
                               const std::vector<double>* cost = nullptr);

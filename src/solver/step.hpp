@@ -104,6 +104,8 @@ class OneRank {
   // The team's rank 0 does the serial bookkeeping.
   bool leads() const { return team_rank() == 0; }
   NoHalo& halo() { return halo_; }
+  // Every pressure's nodes are this place's own.
+  const GatherParts* gather_parts() const { return nullptr; }
   void contact_pass(SolverState& s, std::int64_t step) { mpsolid::contact_pass(s, step); }
   TeamPhase time(Phase phase) { return TeamPhase(timers_, phase); }
 
@@ -153,9 +155,12 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
   {
     auto t = place.time(Phase::strain);
     // Positions stay put until the force pass, and the switch-on is read
-    // only after the strain pass's closing barrier.
-    if (place.leads() && !s.loads.empty())
-      serial_section([&] { activate_loads(p, s.loads, step, dt); });
+    // only after the strain pass's closing barrier. A pressure's nodes read
+    // their hosts' neighbours, ghosts included: the motion halo first.
+    if (place.leads() && !s.loads.empty()) {
+      if (any_pressure(s.loads)) place.halo().finish();
+      serial_section([&] { activate_loads(p, s.loads, step, dt, place.gather_parts()); });
+    }
     model.strain_pass(p, s.bonds, place.own(p), place.halo());
   }
   if constexpr (Model::forces_read_positions) {

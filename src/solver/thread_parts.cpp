@@ -139,10 +139,12 @@ bool ThreadParts::advance(SolverState& global, std::int64_t steps, bool take_sli
 void ThreadParts::bring_back(SolverState& global) {
   const auto give_back = [&](int t) {
     const RankPart& part = parts_[static_cast<std::size_t>(t)]->part;
+    // The pressures' running step, the same in every part: thread 0's.
+    const bool shared = t == 0;
     std::vector<double> slice;
-    StateSlice::append(part.local, part.layout.owned, slice);
+    StateSlice::append(part.local, part.layout.owned, slice, shared);
     std::size_t at = 0;
-    StateSlice::read(global, decomposition_.owned(t), slice, at);
+    StateSlice::read(global, decomposition_.owned(t), slice, at, shared);
     // And what the last step left in the work arrays (half angles, strain,
     // pressure, forces), so that the whole state is the one a single thread
     // leaves, every array of it.

@@ -6,11 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "kernels/model_registry.hpp"
 #include "src/core/parallel.hpp"
 #include "src/distributed/thread_ranks.hpp"
+#include "src/solver/case_loader.hpp"
 #include "src/solver/simulation.hpp"
 #include "src/solver/thread_parts.hpp"
 #include "tests/support/test_cases.hpp"
@@ -52,22 +55,25 @@ TEST(ThreadRanks, EveryCallDeliversItsOwnLetters) {
 }
 
 // `steps` steps at one thread (the whole state, the team step).
-ParticleStore stepped_alone(const CaseSpec& spec, std::int64_t steps) {
+SolverState stepped_state_alone(const CaseSpec& spec, std::int64_t steps) {
   set_thread_count(1);
   Simulation sim(spec);
   sim.advance(steps);
-  return sim.particles();
+  return sim.state();
+}
+ParticleStore stepped_alone(const CaseSpec& spec, std::int64_t steps) {
+  return stepped_state_alone(spec, steps).particles;
 }
 
 // The same steps on `threads` threads as ranks, cut again after each third
 // of them: at the first cut shifted by `shift` particles, then back.
-ParticleStore stepped_in_parts(const CaseSpec& spec, int threads, std::int64_t steps,
-                               std::size_t shift) {
+SolverState stepped_state_in_parts(const CaseSpec& spec, int threads, std::int64_t steps,
+                                   std::size_t shift) {
   set_thread_count(1);
   Simulation sim(spec);
   SolverState& state = sim.state_to_change();
   set_thread_count(threads);
-  ThreadParts parts(spec, state, threads);
+  ThreadParts parts(sim.spec(), state, threads);  // its time step chosen ("auto")
   const Decomposition first = parts.decomposition();
   Decomposition shifted = first;
   for (std::size_t r = 1; r + 1 < shifted.starts.size(); ++r)
@@ -76,13 +82,18 @@ ParticleStore stepped_in_parts(const CaseSpec& spec, int threads, std::int64_t s
   const std::int64_t third = steps / 3;
   EXPECT_TRUE(parts.advance(state, third, false, timers));
   parts.cut_again(state, shifted);
+
   EXPECT_TRUE(parts.advance(state, third, false, timers));
   parts.cut_again(state, first);
   EXPECT_TRUE(parts.advance(state, steps - 2 * third, false, timers));
   parts.bring_back(state);
   set_thread_count(available_cores());
   EXPECT_EQ(state.step, steps);
-  return state.particles;
+  return state;
+}
+ParticleStore stepped_in_parts(const CaseSpec& spec, int threads, std::int64_t steps,
+                               std::size_t shift) {
+  return stepped_state_in_parts(spec, threads, steps, shift).particles;
 }
 
 TEST(ThreadParts, AnyCutAtAnyThreadCountGivesTheBitsOfOneThreadForEveryModel) {
@@ -94,6 +105,32 @@ TEST(ThreadParts, AnyCutAtAnyThreadCountGivesTheBitsOfOneThreadForEveryModel) {
       for (std::size_t shift : {std::size_t{7}, std::size_t{61}})
         EXPECT_TRUE(testing::same_bits(alone, stepped_in_parts(spec, threads, 300, shift)))
             << threads << " threads, cut shifted by " << shift;
+  }
+}
+
+// A body under a pressure is cut like any other: each part positions the
+// nodes it hosts, the parts share them, and every part has the load's
+// running step (its factor, node positions and work) bit for bit.
+TEST(ThreadParts, APressuresBodyCutBetweenThreadsGivesTheBitsOfOneThread) {
+  for (const std::string& file : {"cases/disk_blast.toml", "cases/ring_pressure.toml"}) {
+    SCOPED_TRACE(file);
+    const CaseSpec spec = load_case(testing::source_path(file));
+    const SolverState alone = stepped_state_alone(spec, 150);
+    for (const auto& [threads, shift] :
+         {std::pair{2, std::size_t{7}}, std::pair{3, std::size_t{200}},
+          std::pair{4, std::size_t{61}}}) {
+      const SolverState parts = stepped_state_in_parts(spec, threads, 150, shift);
+      EXPECT_TRUE(testing::same_bits(alone.particles, parts.particles))
+          << threads << " threads, cut shifted by " << shift;
+      for (std::size_t l = 0; l < alone.loads.size(); ++l) {
+        const StepLoad &a = alone.loads[l], &b = parts.loads[l];
+        EXPECT_EQ(a.work, b.work);
+        EXPECT_EQ(a.factor, b.factor);
+        EXPECT_EQ(a.surface.x, b.surface.x);
+        EXPECT_EQ(a.surface.target_fy, b.surface.target_fy);
+        EXPECT_EQ(load_work(alone.particles, a), load_work(parts.particles, b));
+      }
+    }
   }
 }
 
