@@ -156,7 +156,8 @@ class CorrectedGradientModel {
   // on one thread `halo` does nothing): before pass 1, a partner's position
   // (posted by share_motion, received as pass 1 starts); after
   // it, its F (a bond's gap reads both ends'); after pass 1b, its
-  // (S + Q) A^-1, which the force pass reads. A ghost's A^-1 is never read.
+  // (S + Q) A^-1, which the force pass reads (left posted for the step to
+  // finish). A ghost's A^-1 is never read.
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
     halo.post("motion", {field_of(p.x), field_of(p.y)});
@@ -173,7 +174,7 @@ class CorrectedGradientModel {
     halo.finish();
     compute_gaps_with_ghosts(p, range);
     gather_hourglass(bonds, range);
-    halo("stress", {stress_field()});
+    halo.post("stress", {stress_field()});  // the step finishes it
   }
 
   // The strain pass's two parts: pass 1, then (once every particle's F is

@@ -45,7 +45,9 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
   // The strain pass as the step runs it, with its halos (src/solver/step.hpp):
   // what it reads of a partner's motion (share_motion posts it, the strain
   // pass finishes it before it reads a ghost), and after each stage the
-  // fields the next stage or the force pass read of a partner.
+  // fields the next stage or the force pass read of a partner. It leaves
+  // the last (what the force pass reads) posted: the step finishes it once
+  // the forces that read no ghost are done.
   M::share_motion(p, halo);
   m.strain_pass(p, bonds, range, halo);
   cm.compute_forces(p, bonds, range);

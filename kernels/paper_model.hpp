@@ -123,7 +123,7 @@ class PaperModelT {
   // what the slots read of a partner's motion (position and half angles:
   // posted here, received once the slots between two particles of the range
   // are done); after it, the pressure the force pass reads (a partner's
-  // strain is never read).
+  // strain is never read), left posted for the step to finish.
   template <class Halo>
   static void share_motion(ParticleStore& p, Halo& halo) {
     halo.post("motion", {field_of(p.x), field_of(p.y), field_of(p.half_cos), field_of(p.half_sin)});
@@ -153,7 +153,7 @@ class PaperModelT {
     parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
       gather_strain(p, bonds, {b, e});
     });
-    halo("pressure", {field_of(p.pressure)});
+    halo.post("pressure", {field_of(p.pressure)});
   }
 
   // Pass 2 (needs pass 1 at the current state): force and torque.

@@ -1,5 +1,6 @@
 #include "src/solver/distributed_step.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <variant>
@@ -40,6 +41,23 @@ std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vec
   return values;
 }
 
+namespace {
+// The owned particles bonded only to owned ones: [a, b) with every owned
+// particle bonded below the owned range before a and every one bonded
+// above it from b on (storage is slabs of rows: these are the rows at
+// the cuts).
+Range bonded_to_owned_only(const BondTable& bonds, Range owned) {
+  std::size_t a = owned.begin, b = owned.end;
+  for (std::size_t i = owned.begin; i < owned.end; ++i)
+    for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+      const std::size_t j = bonds.neighbor[k];
+      if (j < owned.begin) a = std::max(a, i + 1);
+      if (j >= owned.end) b = std::min(b, i);
+    }
+  return {std::min(a, b), b};
+}
+}  // namespace
+
 RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   RankPart part;
   part.layout = std::move(local.layout);
@@ -48,6 +66,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
+  part.bonded_to_owned_only = bonded_to_owned_only(part.local.bonds, part.layout.owned);
   return part;
 }
 

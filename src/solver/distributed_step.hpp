@@ -10,6 +10,7 @@
 //
 // With contact, the contact pass (src/solver/distributed_contact.hpp)
 // follows the halo of motion, as it comes first in the serial step.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <initializer_list>
@@ -38,6 +39,9 @@ struct RankPart {
   AnyModel model;
   HaloCost halo_cost;  // summed over every step so far
   RankTimes times;     // the passes' wall time, summed likewise
+  // The owned particles bonded to no ghost (local indices; empty at its
+  // end when there are none): their forces read only owned fields.
+  Range bonded_to_owned_only;
 };
 
 // Adds the wall time of its scope to `*seconds` (when not null), less the
@@ -98,6 +102,13 @@ class OverRanks {
     void finish() { finish_halo(world, part.halo, part.halo_cost); }
   };
   Halo& halo() { return halo_; }
+  // The particles of `moving` whose force reads no ghost (their bonds stay
+  // among the owned), a range within it.
+  Range reads_no_ghost(Range moving) const {
+    const Range r = halo_.part.bonded_to_owned_only;
+    const std::size_t b = std::clamp(r.begin, moving.begin, moving.end);
+    return {b, std::clamp(r.end, b, moving.end)};
+  }
   // How the parts of a split pressure's body share its nodes.
   const GatherParts* gather_parts() const { return &gather_; }
   void contact_pass(SolverState& s, std::int64_t step) {

@@ -104,6 +104,8 @@ class OneRank {
   // The team's rank 0 does the serial bookkeeping.
   bool leads() const { return team_rank() == 0; }
   NoHalo& halo() { return halo_; }
+  // The particles of `moving` whose force reads no ghost: all of them.
+  Range reads_no_ghost(Range moving) const { return moving; }
   // Every pressure's nodes are this place's own.
   const GatherParts* gather_parts() const { return nullptr; }
   void contact_pass(SolverState& s, std::int64_t step) { mpsolid::contact_pass(s, step); }
@@ -135,6 +137,7 @@ void strain_fields(Model& model, SolverState& s, Place& place) {
   Model::share_motion(p, place.halo());
   auto t = place.time(Phase::strain);
   model.strain_pass(p, s.bonds, place.own(p), place.halo());
+  place.halo().finish();
 }
 
 // One step, in order, called by every thread of the team on one rank (by
@@ -166,6 +169,7 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
   if constexpr (Model::forces_read_positions) {
     {
       auto t = place.time(Phase::forces);
+      place.halo().finish();
       model.compute_forces(p, s.bonds, moving);
     }
     auto t = place.time(Phase::integrate);
@@ -174,12 +178,21 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     });
   } else {
     // A block's forces read no position, so its integration follows at once:
-    // one barrier less per step.
+    // one barrier less per step. On a part, the particles whose forces read
+    // no ghost go first, while the strain pass's last halo travels.
     auto t = place.time(Phase::forces);
-    parallel_blocks(moving.begin, moving.end, [&](std::size_t b, std::size_t e) {
-      model.compute_forces_block(p, s.bonds, {b, e});
-      integrate_block<rot>(s, dt, step, {b, e}, kicks);
-    });
+    const auto forces_and_motion = [&](Range r) {
+      if (r.empty()) return;
+      parallel_blocks(r.begin, r.end, [&](std::size_t b, std::size_t e) {
+        model.compute_forces_block(p, s.bonds, {b, e});
+        integrate_block<rot>(s, dt, step, {b, e}, kicks);
+      });
+    };
+    const Range inner = place.reads_no_ghost(moving);
+    forces_and_motion(inner);
+    place.halo().finish();
+    forces_and_motion({moving.begin, inner.begin});
+    forces_and_motion({inner.end, moving.end});
   }
 }
 
