@@ -348,9 +348,14 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   };
   if (std::filesystem::is_directory(options.out_dir)) lock_and_check();
   Simulation sim(spec, options.followers);
-  // Before the first step, so a dt that cannot run is named with its fix.
-  if (const std::string w = fixed_time_step_warning(sim.spec(), sim.state()); !w.empty())
-    fmt::print(stderr, "mpsolid: warning: {}\n", w);
+  // Before the first step, so a dt that cannot run is named with its fix
+  // (its estimate is set-up work).
+  std::string warning;
+  {
+    auto t = sim.timers().time(Phase::setup);
+    warning = fixed_time_step_warning(sim.spec(), sim.state());
+  }
+  if (!warning.empty()) fmt::print(stderr, "mpsolid: warning: {}\n", warning);
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {
