@@ -44,55 +44,61 @@ double distance(Point2 a, Point2 b) {
   return std::hypot(a.x - b.x, a.y - b.y);
 }
 
-// The weights of a node at `at` hosted by site h: x = x_h + sum_j c_j (x_j -
-// x_h), c_j = d_j^T A^+ (at - X_h), A = sum_j d_j d_j^T over h's lattice
-// neighbours j in the body (d_j = X_j - X_h); the pseudo-inverse keeps a
-// row of sites one site thick well defined.
+// The weights of a node at `at` hosted by site h: the least-norm weights w_j
+// that sum to one and reproduce X_k = sum_j w_j X_j, over h and its eight
+// lattice neighbours in the body (an affine least-squares fit through all
+// of them, evaluated at X_k). With d_j = X_j - X_h, c their mean and
+// C = sum_j (d_j - c)(d_j - c)^T: w_j = 1/n + (d_j - c)^T C^+ (X_k - X_h - c).
+// A fit anchored at h instead (h's weight near 1.5, its neighbours' negative)
+// pushes hard on the near-surface modes that F does not see: the Lame
+// cylinder and the squeezed disk come out softer with it (docs/MODEL.md).
+// The pseudo-inverse keeps a row of sites one site thick well defined.
 void add_weights(Surface& s, const std::vector<Point2>& sites, const SiteIndex& index,
                  std::uint32_t h, Point2 at) {
   const Point2 xh = sites[h];
   const std::int64_t k = index.lattice(xh.x), m = index.lattice(xh.y);
-  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t> near{h};
   for (std::int64_t dm = -1; dm <= 1; ++dm)
     for (std::int64_t dk = -1; dk <= 1; ++dk)
       if (dk != 0 || dm != 0)
         if (const std::int64_t j = index.at(k + dk, m + dm); j >= 0)
           near.push_back(static_cast<std::uint32_t>(j));
+  const double n = static_cast<double>(near.size());
+  double cx = 0, cy = 0;
+  for (const std::uint32_t j : near) {
+    cx += sites[j].x - xh.x;
+    cy += sites[j].y - xh.y;
+  }
+  cx /= n;
+  cy /= n;
   double a11 = 0, a12 = 0, a22 = 0;
   for (const std::uint32_t j : near) {
-    const double dx = sites[j].x - xh.x, dy = sites[j].y - xh.y;
-    a11 += dx * dx;
-    a12 += dx * dy;
-    a22 += dy * dy;
+    const double ex = sites[j].x - xh.x - cx, ey = sites[j].y - xh.y - cy;
+    a11 += ex * ex;
+    a12 += ex * ey;
+    a22 += ey * ey;
   }
-  // A^+ (at - X_h), as (gx, gy).
-  const double rx = at.x - xh.x, ry = at.y - xh.y;
+  // C^+ (X_k - X_h - c), as (gx, gy).
+  const double rx = at.x - xh.x - cx, ry = at.y - xh.y - cy;
   double gx = 0, gy = 0;
   const double det = a11 * a22 - a12 * a12, trace = a11 + a22;
   if (det > 1e-9 * trace * trace) {
     gx = (a22 * rx - a12 * ry) / det;
     gy = (a11 * ry - a12 * rx) / det;
   } else if (trace > 0) {
-    // Rank one: A = trace u u^T.
+    // Rank one: C = trace u u^T.
     const double norm = std::hypot(a11, a12) > 0 ? std::hypot(a11, a12) : std::hypot(a12, a22);
     const double ux = (a11 > 0 ? a11 : a12) / norm, uy = (a11 > 0 ? a12 : a22) / norm;
     const double along = (ux * rx + uy * ry) / trace;
     gx = along * ux;
     gy = along * uy;
   }
-  double host_weight = 1.0;
-  std::vector<std::pair<std::uint32_t, double>> others;
+  // The host first (it says which part positions the node).
   for (const std::uint32_t j : near) {
-    const double c = (sites[j].x - xh.x) * gx + (sites[j].y - xh.y) * gy;
-    if (c == 0.0) continue;
-    host_weight -= c;
-    others.emplace_back(j, c);
-  }
-  s.site.push_back(h);
-  s.weight.push_back(host_weight);
-  for (const auto& [j, c] : others) {
+    const double w = 1.0 / n + (sites[j].x - xh.x - cx) * gx + (sites[j].y - xh.y - cy) * gy;
+    if (w == 0.0 && j != h) continue;
     s.site.push_back(j);
-    s.weight.push_back(c);
+    s.weight.push_back(w);
   }
   s.offsets.push_back(static_cast<std::uint32_t>(s.site.size()));
 }

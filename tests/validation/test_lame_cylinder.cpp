@@ -3,8 +3,10 @@
 // (p / E = 1e-3) ramped up over 2 ms and damped to rest. The inner wall's
 // radial displacement (the pressure's surface nodes, which lie on r = a)
 // against u(a) = (1 + nu) p a / (E (b^2 - a^2)) ((1 - 2 nu) a^2 + b^2), at
-// 10 and 20 particles across the wall, for linear_elastic and
-// finite_strain. docs/verification.md has the figures at three spacings.
+// 10, 20 and 40 particles across the wall, for linear_elastic and
+// finite_strain. docs/verification.md has the figures at more spacings: the
+// error scatters by about +-1 % with how the circle falls on the lattice
+// (the material in the wall's first layer) around its fall with l0.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -74,11 +76,15 @@ double inner_wall_error(const std::string& model, double l0) {
 TEST(LameCylinder, InnerWallDisplacementConvergesToThePlaneStrainSolution) {
   for (const std::string model : {"linear_elastic", "finite_strain"}) {
     SCOPED_TRACE(model);
-    const double coarse = inner_wall_error(model, 0.001), fine = inner_wall_error(model, 0.0005);
-    std::printf("%s: %+.4f at 10 across, %+.4f at 20 across\n", model.c_str(), coarse, fine);
-    EXPECT_LT(std::abs(coarse), 0.05);
-    EXPECT_LT(std::abs(fine), 0.03);
-    EXPECT_GT(std::abs(coarse) / std::abs(fine), 1.5);  // first order or better
+    const double at10 = inner_wall_error(model, 0.001), at20 = inner_wall_error(model, 0.0005),
+                 at40 = inner_wall_error(model, 0.00025);
+    std::printf("%s: %+.4f, %+.4f, %+.4f at 10, 20, 40 across\n", model.c_str(), at10, at20, at40);
+    // 2.5-2.6 %, 2.1 % and 0.7-0.8 %: the 2 % at 10 across is not reached
+    // (docs/verification.md says why).
+    EXPECT_LT(std::abs(at10), 0.03);
+    EXPECT_LT(std::abs(at20), 0.025);
+    EXPECT_LT(std::abs(at40), 0.01);
+    EXPECT_GT(std::abs(at10) / std::abs(at40), 2.0);  // falling with l0
   }
 }
 

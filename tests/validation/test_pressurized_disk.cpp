@@ -124,11 +124,11 @@ TEST(PressurizedDisk, RadialStrainAtRestMatchesThePlaneStrainSolution) {
                   m.name.c_str(), kRadius / spacing[k], m.exact - 1, error[k].bulk,
                   error[k].surface);
     }
-    // The bulk within 1 % at 10 particles across; the surface, pressed into
-    // the particles' outer row, within 3 %; both converging.
-    EXPECT_LT(std::abs(error[1].bulk), 0.01);
-    EXPECT_LT(std::abs(error[1].surface), 0.03);
-    EXPECT_LT(std::abs(error[2].bulk), 0.75 * std::abs(error[1].bulk));
+    // The bulk within 0.5 % from 5 particles across (its error there is
+    // the lattice circle's, not a trend); the surface, pressed into the
+    // particles' outer row, within 2.5 % at 10 and converging.
+    for (const Strains& e : error) EXPECT_LT(std::abs(e.bulk), 0.005);
+    EXPECT_LT(std::abs(error[1].surface), 0.025);
     EXPECT_LT(std::abs(error[2].surface), 0.75 * std::abs(error[1].surface));
     EXPECT_LT(std::abs(error[1].surface), 0.75 * std::abs(error[0].surface));
   }
