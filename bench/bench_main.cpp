@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   register_neighbor_benchmarks();
   register_contact_benchmarks();
   register_team_benchmarks();
+  register_gas_benchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -9,5 +9,6 @@ void register_skip_work_benchmarks();  // bench_skip_work.cpp
 void register_neighbor_benchmarks();   // bench_neighbors.cpp
 void register_contact_benchmarks();    // bench_contact.cpp
 void register_team_benchmarks();       // bench_team.cpp
+void register_gas_benchmarks();        // bench_gas.cpp
 
 }  // namespace mpsolid::bench

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "src/core/parallel.hpp"
 #include "src/gas/hllc_flux.hpp"
 
 namespace mpsolid {
@@ -30,6 +31,32 @@ void for_each_cell(const GasGrid<Dim>& g, std::type_identity_t<std::array<int, D
     }
     if (d == Dim) return;
   }
+}
+
+// The same over the threads: the box's rows along axis 0 shared out in
+// contiguous blocks. f writes only the outputs of its own cell or face, so
+// any split gives the same bits.
+template <int Dim, class F>
+void for_each_cell_parallel(const GasGrid<Dim>& g, std::type_identity_t<std::array<int, Dim>> lo,
+                            std::type_identity_t<std::array<int, Dim>> hi, F&& f) {
+  std::size_t rows = 1;
+  for (int d = 0; d < Dim; ++d) {
+    if (lo[d] >= hi[d]) return;
+    if (d > 0) rows *= static_cast<std::size_t>(hi[d] - lo[d]);
+  }
+  parallel_blocks(0, rows, [&](std::size_t b, std::size_t e) {
+    for (std::size_t row = b; row < e; ++row) {
+      std::array<int, Dim> c = lo;
+      std::size_t rest = row;
+      for (int d = 1; d < Dim; ++d) {
+        const auto span = static_cast<std::size_t>(hi[d] - lo[d]);
+        c[d] = lo[d] + static_cast<int>(rest % span);
+        rest /= span;
+      }
+      std::size_t k = g.index(c);
+      for (; c[0] < hi[0]; ++c[0], ++k) f(c, k);
+    }
+  });
 }
 
 // van Leer's limited slope from the two one-sided differences.
@@ -143,8 +170,7 @@ void GasSolver<Dim>::fill_ghosts(Fields& q) const {
 template <int Dim>
 void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
   fill_ghosts(q);
-  const std::size_t n = grid_.storage();
-  for (std::size_t k = 0; k < n; ++k) {
+  parallel_for(0, grid_.storage(), [&](std::size_t k) {
     const double rho = q[0][k];
     double m2 = 0;
     w_[0][k] = rho;
@@ -153,8 +179,10 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
       m2 += q[1 + d][k] * q[1 + d][k];
     }
     w_[Dim + 1][k] = (gamma_ - 1) * (q[Dim + 1][k] - 0.5 * m2 / rho);
-  }
-  for (auto& v : rhs) std::fill(v.begin(), v.end(), 0.0);
+  });
+  parallel_for(0, grid_.storage(), [&](std::size_t k) {
+    for (int v = 0; v < kVars; ++v) rhs[v][k] = 0.0;
+  });
   const double inv_h = 1 / grid_.h;
   for (int a = 0; a < Dim; ++a) {
     if (!axis_active(a)) continue;
@@ -162,7 +190,7 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
     // The flux through each cell's lower face along a (k the upper cell).
     std::array<int, Dim> lo{}, hi = grid_.cells;
     hi[a] += 1;
-    for_each_cell(grid_, lo, hi, [&](const std::array<int, Dim>&, std::size_t k) {
+    for_each_cell_parallel(grid_, lo, hi, [&](const std::array<int, Dim>&, std::size_t k) {
       std::array<double, kVars> lv, rv;  // rho, u, p on each side of the face
       for (int v = 0; v < kVars; ++v) {
         const std::vector<double>& w = w_[v];
@@ -190,11 +218,11 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
       for (int d = 0; d < Dim; ++d) flux_[1 + d][k] = f.m[d];
       flux_[Dim + 1][k] = f.E;
     });
-    for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
-                  [&](const std::array<int, Dim>&, std::size_t k) {
-                    for (int v = 0; v < kVars; ++v)
-                      rhs[v][k] -= (flux_[v][k + s] - flux_[v][k]) * inv_h;
-                  });
+    for_each_cell_parallel(grid_, std::array<int, Dim>{}, grid_.cells,
+                           [&](const std::array<int, Dim>&, std::size_t k) {
+                             for (int v = 0; v < kVars; ++v)
+                               rhs[v][k] -= (flux_[v][k + s] - flux_[v][k]) * inv_h;
+                           });
   }
 }
 
@@ -221,13 +249,15 @@ void GasSolver<Dim>::advance(double dt) {
   // Heun's SSP-RK2: U1 = U + dt L(U); U' = (U + U1 + dt L(U1)) / 2.
   residual(q_, rhs_);
   const std::size_t n = grid_.storage();
-  for (int v = 0; v < kVars; ++v)
-    for (std::size_t k = 0; k < n; ++k) stage_[v][k] = q_[v][k] + dt * rhs_[v][k];
+  parallel_for(0, n, [&](std::size_t k) {
+    for (int v = 0; v < kVars; ++v) stage_[v][k] = q_[v][k] + dt * rhs_[v][k];
+  });
   check(stage_);
   residual(stage_, rhs_);
-  for (int v = 0; v < kVars; ++v)
-    for (std::size_t k = 0; k < n; ++k)
+  parallel_for(0, n, [&](std::size_t k) {
+    for (int v = 0; v < kVars; ++v)
       stage_[v][k] = 0.5 * (q_[v][k] + (stage_[v][k] + dt * rhs_[v][k]));
+  });
   check(stage_);
   std::swap(q_, stage_);
 }
