@@ -8,6 +8,7 @@
 
 #include "src/core/parallel.hpp"
 #include "src/gas/hllc_flux.hpp"
+#include "src/gas/wall_riemann.hpp"
 
 namespace mpsolid {
 
@@ -117,13 +118,14 @@ template <int Dim>
 double GasSolver<Dim>::stable_dt(double cfl) const {
   double worst = 0;
   std::array<int, Dim> lo{}, hi = grid_.cells;
-  for_each_cell(grid_, lo, hi, [&](const std::array<int, Dim>& c, std::size_t) {
+  for_each_cell(grid_, lo, hi, [&](const std::array<int, Dim>& c, std::size_t k) {
+    if (!pushes(k)) return;
     const GasPrimitive<Dim> w = primitive(c);
     const double sound = sound_speed(w.rho, w.p, gamma_);
     double rate = 0;
     for (int d = 0; d < Dim; ++d)
       if (axis_active(d)) rate += std::abs(w.u[d]) + sound;
-    worst = std::max(worst, rate);
+    worst = std::max(worst, rate / fraction(k));
   });
   return worst > 0 ? cfl * grid_.h / worst : 0.0;
 }
@@ -183,6 +185,7 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
   parallel_for(0, grid_.storage(), [&](std::size_t k) {
     for (int v = 0; v < kVars; ++v) rhs[v][k] = 0.0;
   });
+  stage_inflow_ = {};
   const double inv_h = 1 / grid_.h;
   for (int a = 0; a < Dim; ++a) {
     if (!axis_active(a)) continue;
@@ -190,13 +193,21 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
     // The flux through each cell's lower face along a (k the upper cell).
     std::array<int, Dim> lo{}, hi = grid_.cells;
     hi[a] += 1;
+    const std::vector<std::int32_t>* closed = blocked_.empty() ? nullptr : &closed_[a];
+    const auto is_closed = [&](std::size_t face) { return closed && (*closed)[face] >= 0; };
     for_each_cell_parallel(grid_, lo, hi, [&](const std::array<int, Dim>&, std::size_t k) {
+      if (is_closed(k)) {
+        close_face(blocked_[static_cast<std::size_t>((*closed)[k])]);
+        return;
+      }
       std::array<double, kVars> lv, rv;  // rho, u, p on each side of the face
+      // No slope reads across a closed face: first order on that side.
+      const bool flat_l = is_closed(k - s), flat_r = is_closed(k + s);
       for (int v = 0; v < kVars; ++v) {
         const std::vector<double>& w = w_[v];
         const double w0 = w[k - 2 * s], w1 = w[k - s], w2 = w[k], w3 = w[k + s];
-        lv[v] = w1 + 0.5 * van_leer(w1 - w0, w2 - w1);
-        rv[v] = w2 - 0.5 * van_leer(w2 - w1, w3 - w2);
+        lv[v] = flat_l ? w1 : w1 + 0.5 * van_leer(w1 - w0, w2 - w1);
+        rv[v] = flat_r ? w2 : w2 - 0.5 * van_leer(w2 - w1, w3 - w2);
       }
       if (!(lv[0] > 0 && lv[kVars - 1] > 0 && rv[0] > 0 && rv[kVars - 1] > 0)) {
         for (int v = 0; v < kVars; ++v) {  // first order at this face
@@ -218,18 +229,259 @@ void GasSolver<Dim>::residual(Fields& q, Fields& rhs) {
       for (int d = 0; d < Dim; ++d) flux_[1 + d][k] = f.m[d];
       flux_[Dim + 1][k] = f.E;
     });
+    add_stage_inflow(a);
+    // A cell's upper face, when closed, has the flux the wall gives it. A
+    // solid cell keeps its state.
     for_each_cell_parallel(grid_, std::array<int, Dim>{}, grid_.cells,
                            [&](const std::array<int, Dim>&, std::size_t k) {
-                             for (int v = 0; v < kVars; ++v)
-                               rhs[v][k] -= (flux_[v][k + s] - flux_[v][k]) * inv_h;
+                             if (!pushes(k)) return;
+                             const std::size_t up = k + s;
+                             const double inv_volume = inv_h / fraction(k);
+                             const std::int32_t c = closed ? (*closed)[up] : -1;
+                             for (int v = 0; v < kVars; ++v) {
+                               const double upper =
+                                   c >= 0 ? below_flux_[static_cast<std::size_t>(c)][v]
+                                          : flux_[v][up];
+                               rhs[v][k] -= (upper - flux_[v][k]) * inv_volume;
+                             }
                            });
   }
+}
+
+// A closed face's two fluxes: the cell below sees a wall ahead along n,
+// the cell above one behind it; each gets no mass, the wall pressure of its
+// own half Riemann problem along the face's axis, and that pressure's work
+// at the wall's velocity.
+template <int Dim>
+void GasSolver<Dim>::close_face(const ClosedFace& f) {
+  const std::size_t s = grid_.stride(f.axis);
+  const std::size_t below = f.k - s, above = f.k;
+  const std::size_t i = static_cast<std::size_t>(closed_[f.axis][f.k]);
+  double un_below = 0, un_above = 0, wall_un = 0;
+  for (int d = 0; d < Dim; ++d) {
+    un_below += w_[1 + d][below] * f.n[d];
+    un_above += w_[1 + d][above] * f.n[d];
+    wall_un += f.v[d] * f.n[d];
+  }
+  const double p_below = wall_pressure(w_[0][below], un_below, w_[Dim + 1][below], gamma_, wall_un);
+  const double p_above =
+      wall_pressure(w_[0][above], -un_above, w_[Dim + 1][above], gamma_, -wall_un);
+  wall_pressures_[i] = {p_below, p_above};
+  std::array<double, kVars>& fb = below_flux_[i];
+  fb.fill(0.0);
+  fb[1 + f.axis] = p_below;
+  fb[Dim + 1] = p_below * f.v[f.axis];
+  flux_[0][above] = 0.0;
+  for (int d = 0; d < Dim; ++d) flux_[1 + d][above] = 0.0;
+  flux_[1 + f.axis][above] = p_above;
+  flux_[Dim + 1][above] = p_above * f.v[f.axis];
+}
+
+template <int Dim>
+void GasSolver<Dim>::add_wall_forces(std::vector<std::array<double, 2 * Dim>>& forces,
+                                     double weight, double dt) {
+  double area = 1;  // a face's area (per metre of depth in 2D)
+  for (int d = 0; d + 1 < Dim; ++d) area *= grid_.h;
+  for (std::size_t i = 0; i < blocked_.size(); ++i) {
+    const ClosedFace& f = blocked_[i];
+    const std::size_t s = grid_.stride(f.axis);
+    // The gas below pushes the wall along +axis, the gas above along -axis;
+    // a solid cell pushes nothing.
+    const double below = pushes(f.k - s) ? wall_pressures_[i][0] : 0.0;
+    const double above = pushes(f.k) ? wall_pressures_[i][1] : 0.0;
+    const double push = weight * (below - above) * area;
+    std::array<double, 2 * Dim>& out = forces[f.piece];
+    out[f.axis] += (1 - f.t) * push;
+    out[Dim + f.axis] += f.t * push;
+    exchange_.wall_impulse[f.axis] += push * dt;
+    exchange_.wall_work += push * f.v[f.axis] * dt;
+  }
+}
+
+template <int Dim>
+void GasSolver<Dim>::add_stage_inflow(int a) {
+  // The faces on the grid's edges along a, each side's in storage order:
+  // flux_ runs along +a, so it comes in at the low side and goes out at the
+  // high one.
+  double area = 1;
+  for (int d = 0; d + 1 < Dim; ++d) area *= grid_.h;
+  const std::size_t s = grid_.stride(a);
+  for (int side = 0; side < 2; ++side) {
+    std::array<int, Dim> lo{}, hi = grid_.cells;
+    lo[a] = side == 0 ? 0 : grid_.cells[a];
+    hi[a] = lo[a] + 1;
+    const double sign = side == 0 ? area : -area;
+    for_each_cell(grid_, lo, hi, [&](const std::array<int, Dim>&, std::size_t k) {
+      if (!pushes(side == 0 ? k : k - s)) return;
+      stage_inflow_.mass += sign * flux_[0][k];
+      for (int d = 0; d < Dim; ++d) stage_inflow_.momentum[d] += sign * flux_[1 + d][k];
+      stage_inflow_.energy += sign * flux_[Dim + 1][k];
+    });
+  }
+}
+
+template <int Dim>
+void GasSolver<Dim>::set_walls(const std::vector<GasWallSegment>& walls) requires(Dim == 2) {
+  std::vector<std::uint8_t> was;
+  was.swap(solid_);
+  std::array<std::vector<std::int32_t>, Dim> was_closed;
+  was_closed.swap(closed_);
+  blocked_.clear();
+  for (auto& c : closed_) c.assign(grid_.storage(), -1);
+  // Per cell: the parity of the crossings of its row between it and the
+  // cell before it (or, for the row's first cell, anywhere to its left).
+  std::vector<std::uint8_t> flips(grid_.storage(), 0);
+  const double h = grid_.h;
+  // The faces along axis a lie on the lines through the cell centres
+  // across it; a segment closes the face its crossing of such a line falls
+  // in (half-open in the segment, so a vertex where an outline passes
+  // through a line is crossed once, and one where it only touches the line
+  // twice or never).
+  for (std::uint32_t piece = 0; piece < walls.size(); ++piece) {
+    const GasWallSegment& w = walls[piece];
+    const double dx = w.b[0] - w.a[0], dy = w.b[1] - w.a[1], length = std::hypot(dx, dy);
+    if (!(length > 0)) continue;
+    for (int a = 0; a < 2; ++a) {
+      const int across = 1 - a;  // the axis the lines are numbered along
+      const double from = w.a[across], to = w.b[across];
+      if (from == to) continue;  // parallel to the lines
+      std::array<double, 2> n{dy / length, -dx / length};
+      if (n[a] < 0) n = {-n[0], -n[1]};
+      const double lo = std::min(from, to), hi = std::max(from, to);
+      const double first = std::ceil((lo - grid_.origin[across]) / h - 0.5);
+      for (int line = static_cast<int>(std::clamp(first, 0.0, double(grid_.cells[across])));
+           line < grid_.cells[across]; ++line) {
+        const double at = grid_.origin[across] + (line + 0.5) * h;
+        if (at >= hi) break;
+        if (at < lo) continue;
+        const double t = (at - from) / (to - from);
+        const double along = w.a[a] + t * (w.b[a] - w.a[a]);
+        // The cell above the crossing along a (0 for any crossing left of
+        // the first centre).
+        const double upper = std::floor((along - grid_.origin[a]) / h + 0.5);
+        if (upper > grid_.cells[a] - 1) continue;
+        std::array<int, 2> cell{};
+        cell[a] = upper < 0 ? 0 : static_cast<int>(upper);
+        cell[across] = line;
+        const std::size_t k = grid_.index(cell);
+        if (a == 0) flips[k] ^= 1;
+        if (upper < 1 || closed_[a][k] >= 0) continue;  // a grid edge, or closed already
+        const double face = grid_.origin[a] + upper * h;
+        ClosedFace f{k, a, piece, t, along - face, n, {}};
+        for (int d = 0; d < 2; ++d) f.v[d] = (1 - t) * w.va[d] + t * w.vb[d];
+        closed_[a][k] = static_cast<std::int32_t>(blocked_.size());
+        blocked_.push_back(f);
+      }
+    }
+  }
+  solid_.assign(grid_.storage(), 1);
+  for (int j = 0; j < grid_.cells[1]; ++j) {
+    std::uint8_t inside = 0;
+    std::size_t k = grid_.index({0, j});
+    for (int i = 0; i < grid_.cells[0]; ++i, ++k) solid_[k] = inside ^= flips[k];
+  }
+  std::vector<double> was_fraction;
+  was_fraction.swap(fraction_);
+  fraction_.assign(grid_.storage(), 1.0);
+  for (const ClosedFace& f : blocked_) {
+    const std::size_t below = f.k - grid_.stride(f.axis);
+    if (!solid_[below]) fraction_[below] += f.offset / h;
+    if (!solid_[f.k]) fraction_[f.k] -= f.offset / h;
+  }
+  for (double& v : fraction_) v = std::clamp(v, 0.5, 2.0);
+  if (!was.empty()) exchange_cells(was, was_closed, was_fraction);
+  below_flux_.assign(blocked_.size(), {});
+  wall_pressures_.assign(blocked_.size(), {});
+  wall_forces_.assign(walls.size(), {});
+  stage_forces_.assign(walls.size(), {});
+}
+
+template <int Dim>
+void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
+                                    const std::array<std::vector<std::int32_t>, Dim>& was_closed,
+                                    const std::vector<double>& was_fraction) {
+  double volume = 1;
+  for (int d = 0; d < Dim; ++d) volume *= grid_.h;
+  // Work in contents (per cell volume) while the walls move: each gas cell's
+  // content is its state times its old volume.
+  for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
+                [&](const std::array<int, Dim>&, std::size_t k) {
+                  if (was[k]) return;
+                  const double f = was_fraction.empty() ? 1.0 : was_fraction[k];
+                  for (int v = 0; v < kVars; ++v) q_[v][k] *= f;
+                });
+  // The neighbours of k through faces open in `faces` that are gas in both
+  // masks, in a fixed order.
+  const auto neighbours = [&](std::size_t k,
+                              const std::array<std::vector<std::int32_t>, Dim>& faces) {
+    std::vector<std::size_t> out;
+    for (int a = 0; a < Dim; ++a) {
+      const std::size_t s = grid_.stride(a);
+      for (const std::size_t nb : {k - s, k + s}) {
+        const std::size_t face = nb < k ? k : nb;
+        if (!was[nb] && !solid_[nb] && (faces[a].empty() || faces[a][face] < 0)) out.push_back(nb);
+      }
+    }
+    return out;
+  };
+  const auto where = [&](const std::array<int, Dim>& c) {
+    std::string text;
+    for (int d = 0; d < Dim; ++d) text += fmt::format("{}{}", d ? ", " : "", c[d]);
+    return text;
+  };
+  // A covered cell's gas goes to the neighbours it was open to, in equal
+  // shares: the gas keeps its mass, momentum and energy, as a piston keeps
+  // the gas it pushes.
+  for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
+                [&](const std::array<int, Dim>&, std::size_t k) {
+                  if (was[k] || !solid_[k]) return;
+                  const std::vector<std::size_t> to = neighbours(k, was_closed);
+                  if (to.empty()) {
+                    exchange_.lost.mass += q_[0][k] * volume;
+                    for (int d = 0; d < Dim; ++d)
+                      exchange_.lost.momentum[d] += q_[1 + d][k] * volume;
+                    exchange_.lost.energy += q_[Dim + 1][k] * volume;
+                  } else {
+                    for (const std::size_t nb : to)
+                      for (int v = 0; v < kVars; ++v) q_[v][nb] += q_[v][k] / to.size();
+                  }
+                  const double f = was_fraction.empty() ? 1.0 : was_fraction[k];
+                  for (int v = 0; v < kVars; ++v) q_[v][k] /= f;  // its state, frozen
+                });
+  // An uncovered cell and the neighbours it opens to share their gas in
+  // proportion to their new volumes: the gas fills the volume the wall
+  // left, keeping its mass, momentum and energy.
+  for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
+                [&](const std::array<int, Dim>& c, std::size_t k) {
+                  if (!was[k] || solid_[k]) return;
+                  const std::vector<std::size_t> from = neighbours(k, closed_);
+                  if (from.empty())
+                    throw GasFailure(fmt::format(
+                        "cell ({}), uncovered by a wall, has no gas next to it: a wall moved "
+                        "more than a cell in one gas step",
+                        where(c)));
+                  double total = fraction_[k];
+                  for (const std::size_t nb : from) total += fraction_[nb];
+                  for (int v = 0; v < kVars; ++v) {
+                    double sum = 0;
+                    for (const std::size_t nb : from) sum += q_[v][nb];
+                    q_[v][k] = sum * (fraction_[k] / total);
+                    for (const std::size_t nb : from) q_[v][nb] = sum * (fraction_[nb] / total);
+                  }
+                });
+  // Back to states: each gas cell's content over its new volume.
+  for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
+                [&](const std::array<int, Dim>&, std::size_t k) {
+                  if (solid_[k]) return;
+                  for (int v = 0; v < kVars; ++v) q_[v][k] /= fraction_[k];
+                });
 }
 
 template <int Dim>
 void GasSolver<Dim>::check(const Fields& q) const {
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
                 [&](const std::array<int, Dim>& c, std::size_t k) {
+                  if (!pushes(k)) return;
                   const double rho = q[0][k];
                   double m2 = 0;
                   for (int d = 0; d < Dim; ++d) m2 += q[1 + d][k] * q[1 + d][k];
@@ -246,19 +498,39 @@ void GasSolver<Dim>::check(const Fields& q) const {
 
 template <int Dim>
 void GasSolver<Dim>::advance(double dt) {
-  // Heun's SSP-RK2: U1 = U + dt L(U); U' = (U + U1 + dt L(U1)) / 2.
+  // Heun's SSP-RK2: U1 = U + dt L(U); U' = (U + U1 + dt L(U1)) / 2. The
+  // walls get the mean of the two stages' forces, as the gas does, and the
+  // exchanges are the stages' means too (kept only when the step is).
+  const GasExchange<Dim> before = exchange_;
+  for (auto& f : stage_forces_) f.fill(0.0);
+  const auto add_inflow = [&] {
+    exchange_.inflow.mass += 0.5 * dt * stage_inflow_.mass;
+    for (int d = 0; d < Dim; ++d)
+      exchange_.inflow.momentum[d] += 0.5 * dt * stage_inflow_.momentum[d];
+    exchange_.inflow.energy += 0.5 * dt * stage_inflow_.energy;
+  };
   residual(q_, rhs_);
+  add_wall_forces(stage_forces_, 0.5, dt);
+  add_inflow();
   const std::size_t n = grid_.storage();
   parallel_for(0, n, [&](std::size_t k) {
     for (int v = 0; v < kVars; ++v) stage_[v][k] = q_[v][k] + dt * rhs_[v][k];
   });
-  check(stage_);
-  residual(stage_, rhs_);
-  parallel_for(0, n, [&](std::size_t k) {
-    for (int v = 0; v < kVars; ++v)
-      stage_[v][k] = 0.5 * (q_[v][k] + (stage_[v][k] + dt * rhs_[v][k]));
-  });
-  check(stage_);
+  try {
+    check(stage_);
+    residual(stage_, rhs_);
+    add_wall_forces(stage_forces_, 0.5, dt);
+    add_inflow();
+    parallel_for(0, n, [&](std::size_t k) {
+      for (int v = 0; v < kVars; ++v)
+        stage_[v][k] = 0.5 * (q_[v][k] + (stage_[v][k] + dt * rhs_[v][k]));
+    });
+    check(stage_);
+  } catch (const GasFailure&) {
+    exchange_ = before;
+    throw;
+  }
+  wall_forces_ = stage_forces_;
   std::swap(q_, stage_);
 }
 
@@ -269,9 +541,11 @@ GasTotals<Dim> GasSolver<Dim>::totals() const {
   for (int d = 0; d < Dim; ++d) volume *= grid_.h;
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
                 [&](const std::array<int, Dim>&, std::size_t k) {
-                  t.mass += q_[0][k] * volume;
-                  for (int d = 0; d < Dim; ++d) t.momentum[d] += q_[1 + d][k] * volume;
-                  t.energy += q_[Dim + 1][k] * volume;
+                  if (!pushes(k)) return;
+                  const double v = volume * fraction(k);
+                  t.mass += q_[0][k] * v;
+                  for (int d = 0; d < Dim; ++d) t.momentum[d] += q_[1 + d][k] * v;
+                  t.energy += q_[Dim + 1][k] * v;
                 });
   return t;
 }

@@ -1,0 +1,25 @@
+#pragma once
+// The pressure on a wall that moves into or away from a gas: the exact
+// solution of the half Riemann problem between the gas (density rho,
+// pressure p, velocity un along the wall's normal, counted toward the wall)
+// and the wall's normal velocity wall_un (the same sense). The gas meets the
+// wall through a shock when it approaches it faster than the wall recedes,
+// through a rarefaction otherwise (zero pressure: a vacuum opens).
+#include <cmath>
+
+namespace mpsolid {
+
+inline double wall_pressure(double rho, double un, double p, double gamma, double wall_un) {
+  const double approach = un - wall_un;
+  if (approach > 0) {
+    // Shock: approach = (p* - p) sqrt(a / (p* + b)), a quadratic in p* - p.
+    const double a = 2 / ((gamma + 1) * rho), b = (gamma - 1) / (gamma + 1) * p;
+    const double u2 = approach * approach;
+    return p + (u2 + std::sqrt(u2 * u2 + 4 * a * u2 * (p + b))) / (2 * a);
+  }
+  const double c = std::sqrt(gamma * p / rho);
+  const double base = 1 + 0.5 * (gamma - 1) * approach / c;
+  return base > 0 ? p * std::pow(base, 2 * gamma / (gamma - 1)) : 0.0;
+}
+
+}  // namespace mpsolid
