@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "src/case/case_overrides.hpp"
+#include "src/case/gas_reader.hpp"
 #include "src/case/history_reader.hpp"
 #include "src/case/resolved_case.hpp"
 #include "src/case/selection_reader.hpp"
@@ -475,6 +476,7 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   read_model_sections(top, models, c);
   read_stability(top, c);
   read_contact(top, c);
+  read_gas(top, c);
   read_numerics(top, c);
   top.finish();
   if (!c.dt_auto) {

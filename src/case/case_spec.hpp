@@ -106,6 +106,54 @@ struct ContactSpec {
   double min_distance = 0.5;
 };
 
+// [gas]: a compressible ideal gas on a uniform grid, coupled both ways to
+// the bodies it covers (MODEL.md section 9, docs/gas.md). Absent: no gas,
+// and no gas code runs.
+struct GasStateSpec {
+  double density = 0;           // kg/m^3
+  double pressure = 0;          // Pa
+  double velocity[2] = {0, 0};  // m/s
+  bool operator==(const GasStateSpec&) const = default;
+};
+
+struct GasSpec {
+  enum class Edge { slip_wall, inflow, outflow };
+  bool enabled = false;
+  double gamma = 1.4;
+  double cell = 0;                      // m: the cells' side
+  double x[2] = {0, 0}, y[2] = {0, 0};  // m: the grid's extent
+  double cfl = 0.8;                     // the gas step's Courant number, (0, 1]
+  // [axis][low, high]: left, right, bottom, top.
+  Edge edges[2][2] = {{Edge::slip_wall, Edge::slip_wall}, {Edge::slip_wall, Edge::slip_wall}};
+  GasStateSpec initial;  // everywhere at first
+  // Then each region (in name order) its own state.
+  struct Region {
+    std::string name;
+    Shape shape;
+    GasStateSpec state;
+  };
+  std::vector<Region> regions;
+  // Then a planar shock of Mach number `mach` at x = shock_x, running along
+  // +x (direction 1) or -x (-1) into the initial gas (at rest): the gas
+  // behind it from Rankine-Hugoniot.
+  double mach = 0;  // 0: no shock
+  double shock_x = 0;
+  int direction = 1;
+  // What an inflow edge lets in: given, or (with a shock) the shocked gas.
+  bool inflow_given = false;
+  GasStateSpec inflow;
+  // The bodies the gas pushes and is bounded by (indices, ascending), and
+  // the pressure their unstressed state is at (a solid cell pushes with it).
+  std::vector<int> bodies;
+  double reference_pressure = 0;  // Pa
+  // Named points where history.csv records the gas's pressure and density.
+  struct Probe {
+    std::string name;
+    double at[2] = {0, 0};
+  };
+  std::vector<Probe> probes;  // in name order
+};
+
 // The most steps a run may count: step k's time k dt and every cadence stay
 // exact in a double (2^53).
 inline constexpr double kMaxSteps = 9007199254740992.0;
@@ -144,6 +192,7 @@ struct CaseSpec {
   OptionValues model_options;      // the chosen model's section, defaults filled in
   StabilitySpec stability;
   ContactSpec contact;
+  GasSpec gas;
   // numerics.flush_subnormals: subnormals flushed to zero in the solver's
   // loops (src/float_mode.hpp). Opt-in: faster while a wave crosses a fine
   // lattice, not bit-identical to IEEE in the far field (below 1e-270).

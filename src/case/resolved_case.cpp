@@ -85,6 +85,43 @@ std::string shape_toml(const Shape& shape) {
   return out + fmt::format("holes = [\n  {},\n]\n", fmt::join(holes, ",\n  "));
 }
 
+std::string gas_state_toml(const GasStateSpec& s) {
+  return fmt::format("density = {}\npressure = {}\nvelocity = {}\n", format_number(s.density),
+                     format_number(s.pressure), pair(s.velocity[0], s.velocity[1]));
+}
+
+const char* edge_name(GasSpec::Edge e) {
+  return e == GasSpec::Edge::inflow    ? "inflow"
+         : e == GasSpec::Edge::outflow ? "outflow"
+                                       : "slip_wall";
+}
+
+std::string gas_toml(const CaseSpec& c) {
+  const GasSpec& g = c.gas;
+  if (!g.enabled) return "";
+  std::vector<std::string> bodies;
+  for (const int b : g.bodies) bodies.push_back(quote(c.bodies[static_cast<std::size_t>(b)].name));
+  std::string out = fmt::format(
+      "\n[gas]\ngamma = {}\ncell = {}\nx = {}\ny = {}\ncfl = {}\nleft = \"{}\"\nright = "
+      "\"{}\"\nbottom = \"{}\"\ntop = \"{}\"\nreference_pressure = {}\nbodies = [{}]\n",
+      format_number(g.gamma), format_number(g.cell), pair(g.x[0], g.x[1]), pair(g.y[0], g.y[1]),
+      format_number(g.cfl), edge_name(g.edges[0][0]), edge_name(g.edges[0][1]),
+      edge_name(g.edges[1][0]), edge_name(g.edges[1][1]), format_number(g.reference_pressure),
+      fmt::join(bodies, ", "));
+  out += "\n[gas.initial]\n" + gas_state_toml(g.initial);
+  for (const GasSpec::Region& r : g.regions)
+    out += fmt::format("\n[gas.regions.{}]\n", key(r.name)) + shape_toml(r.shape) +
+           gas_state_toml(r.state);
+  if (g.mach > 0)
+    out +=
+        fmt::format("\n[gas.shock]\nmach = {}\nx = {}\ndirection = \"{}\"\n", format_number(g.mach),
+                    format_number(g.shock_x), g.direction > 0 ? "+x" : "-x");
+  if (g.inflow_given) out += "\n[gas.inflow]\n" + gas_state_toml(g.inflow);
+  for (const GasSpec::Probe& p : g.probes)
+    out += fmt::format("\n[gas.probes.{}]\nat = {}\n", key(p.name), pair(p.at[0], p.at[1]));
+  return out;
+}
+
 std::string body_toml(const CaseSpec& c, const BodySpec& b) {
   std::string out = fmt::format(
       "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\n{}", key(b.name), kind_name(b.kind),
@@ -209,6 +246,7 @@ std::string resolved_case_toml(const CaseSpec& c) {
         format_number(c.contact.stiffness), format_number(c.contact.min_distance),
         fmt::join(names, ", "));
   }
+  out += gas_toml(c);
   out += fmt::format("\n[numerics]\nflush_subnormals = {}\n", c.flush_subnormals);
   return out;
 }

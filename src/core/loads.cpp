@@ -154,10 +154,14 @@ void pressure_forces(StepLoad& load) {
   PressureSurface& s = load.surface;
   std::fill(s.fx.begin(), s.fx.end(), 0.0);
   std::fill(s.fy.begin(), s.fy.end(), 0.0);
+  if (!s.given_fx.empty()) {
+    s.fx = s.given_fx;
+    s.fy = s.given_fy;
+  }
   // -p D R(x_to - x_from) on each segment, R the clockwise quarter turn (the
   // outward area vector), half to each end.
   const double half = -0.5 * load.factor * s.pressure * s.depth;
-  for (std::size_t g = 0; g < s.from.size(); ++g) {
+  for (std::size_t g = 0; g < s.from.size() && s.given_fx.empty(); ++g) {
     const std::uint32_t a = s.from[g], b = s.to[g];
     const double fx = half * (s.y[b] - s.y[a]), fy = -half * (s.x[b] - s.x[a]);
     s.fx[a] += fx;

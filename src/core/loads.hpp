@@ -37,6 +37,9 @@ struct PressureSurface {
   std::vector<std::uint32_t> from, to;  // each segment's nodes
   // The running step: each node's position at its start, and its force.
   std::vector<double> x, y, fx, fy;
+  // Node forces set from outside (N: the gas's, held over its step), used
+  // instead of the pressure when not empty.
+  std::vector<double> given_fx, given_fy;
   // This part's particles that the nodes' forces reach (increasing), each
   // weight's place among them (kElsewhere for another part's particle), and
   // their forces in the running step.
@@ -74,7 +77,8 @@ struct StepLoad {
   double factor = 1;
   double cx_last = 0, cy_last = 0;
   double work = 0;
-  // A pressure load's surface; empty for a force.
+  // A pressure load's surface; empty for a force. A body's gas load is a
+  // pressure load over its whole surface with given node forces.
   PressureSurface surface;
   bool is_pressure() const { return !surface.from.empty(); }
 };

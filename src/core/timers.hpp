@@ -19,11 +19,12 @@ enum class Phase {
   diagnostics,
   output,
   contact,
+  gas,
   count_
 };
 inline constexpr std::array<const char*, static_cast<std::size_t>(Phase::count_)> kPhaseNames = {
-    "setup",     "neighbors",    "half_angles", "strain", "forces", "loads",
-    "integrate", "rigid_bodies", "diagnostics", "output", "contact"};
+    "setup",     "neighbors",    "half_angles", "strain", "forces",  "loads",
+    "integrate", "rigid_bodies", "diagnostics", "output", "contact", "gas"};
 
 class PhaseTimers {
  public:

@@ -162,7 +162,7 @@ void put_load(Writer& w, const StepLoad& l) {
   for (const double v : {s.pressure, s.depth}) w.put(v);
   for (const auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
     w.put(*v);
-  for (const auto* v : {&s.weight, &s.x, &s.y}) w.put(*v);
+  for (const auto* v : {&s.weight, &s.x, &s.y, &s.given_fx, &s.given_fy}) w.put(*v);
 }
 StepLoad get_load(Reader& r) {
   StepLoad l;
@@ -179,7 +179,7 @@ StepLoad get_load(Reader& r) {
   for (double* v : {&s.pressure, &s.depth}) *v = r.get();
   for (auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
     *v = r.get_vector<std::uint32_t>();
-  for (auto* v : {&s.weight, &s.x, &s.y}) *v = r.get_vector<double>();
+  for (auto* v : {&s.weight, &s.x, &s.y, &s.given_fx, &s.given_fy}) *v = r.get_vector<double>();
   s.fx.assign(s.nodes(), 0.0);
   s.fy.assign(s.nodes(), 0.0);
   s.target_fx.assign(s.targets.size(), 0.0);

@@ -17,22 +17,27 @@ void write_fields(RigidBody& b, const double* in) {
   for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega, &b.work}) *x = *in++;
 }
 // A pressure's running step: its nodes' positions at the step's start (its
-// forces follow from them).
+// forces follow from them, or from its given node forces).
 std::size_t fields_of(const StepLoad* l) {
-  return 7 + 2 * l->surface.x.size();
+  return 7 + 2 * l->surface.x.size() + 2 * l->surface.given_fx.size();
 }
 void read_fields(const StepLoad& l, double* out) {
   out[0] = l.active ? 1.0 : 0.0;
   for (const double x : {l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work}) *++out = x;
-  out = std::copy(l.surface.x.begin(), l.surface.x.end(), out + 1);
-  std::copy(l.surface.y.begin(), l.surface.y.end(), out);
+  ++out;
+  const PressureSurface& s = l.surface;
+  for (const std::vector<double>* v : {&s.x, &s.y, &s.given_fx, &s.given_fy})
+    out = std::copy(v->begin(), v->end(), out);
 }
 void write_fields(StepLoad& l, const double* in) {
   l.active = in[0] != 0.0;
   for (double* x : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *x = *++in;
   PressureSurface& s = l.surface;
-  std::copy_n(in + 1, s.x.size(), s.x.begin());
-  std::copy_n(in + 1 + s.x.size(), s.y.size(), s.y.begin());
+  ++in;
+  for (std::vector<double>* v : {&s.x, &s.y, &s.given_fx, &s.given_fy}) {
+    std::copy_n(in, v->size(), v->begin());
+    in += v->size();
+  }
   if (l.is_pressure() && l.active) pressure_forces(l);
 }
 

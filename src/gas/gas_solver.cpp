@@ -286,15 +286,19 @@ void GasSolver<Dim>::add_wall_forces(std::vector<std::array<double, 2 * Dim>>& f
     const ClosedFace& f = blocked_[i];
     const std::size_t s = grid_.stride(f.axis);
     // The gas below pushes the wall along +axis, the gas above along -axis;
-    // a solid cell pushes nothing.
-    const double below = pushes(f.k - s) ? wall_pressures_[i][0] : 0.0;
-    const double above = pushes(f.k) ? wall_pressures_[i][1] : 0.0;
+    // a solid cell pushes with the solid pressure.
+    const bool gas_below = pushes(f.k - s), gas_above = pushes(f.k);
+    const double below = gas_below ? wall_pressures_[i][0] : 0.0;
+    const double above = gas_above ? wall_pressures_[i][1] : 0.0;
+    const double solid =
+        ((gas_below ? 0.0 : solid_pressure_) - (gas_above ? 0.0 : solid_pressure_)) * area;
     const double push = weight * (below - above) * area;
     std::array<double, 2 * Dim>& out = forces[f.piece];
-    out[f.axis] += (1 - f.t) * push;
-    out[Dim + f.axis] += f.t * push;
+    out[f.axis] += (1 - f.t) * (push + weight * solid);
+    out[Dim + f.axis] += f.t * (push + weight * solid);
     exchange_.wall_impulse[f.axis] += push * dt;
     exchange_.wall_work += push * f.v[f.axis] * dt;
+    exchange_.solid_work += weight * solid * f.v[f.axis] * dt;
   }
 }
 

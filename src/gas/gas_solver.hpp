@@ -58,7 +58,10 @@ struct GasExchange {
   GasTotals<Dim> inflow;                   // into the grid through its boundaries
   std::array<double, Dim> wall_impulse{};  // N s: the gas's impulse on the walls
   double wall_work = 0;                    // J: the gas's work on the walls
-  GasTotals<Dim> lost;                     // in cells covered with no gas next to them
+  // J: the work of the solid cells' pressure (set_solid_pressure) on the
+  // walls: not the gas's; the walls get wall_work + solid_work.
+  double solid_work = 0;
+  GasTotals<Dim> lost;  // in cells covered with no gas next to them
 };
 
 template <int Dim>
@@ -103,6 +106,10 @@ class GasSolver {
     return !blocked_.empty() && closed_[axis][grid_.index(cell)] >= 0;
   }
   const GasExchange<Dim>& exchange() const { return exchange_; }
+  // The pressure a solid cell pushes its walls with (0 by default): a
+  // body's unstressed state at an ambient pressure feels only the gas's
+  // excess over it.
+  void set_solid_pressure(double p) { solid_pressure_ = p; }
   // The gas's force on each wall segment over the last step (the mean of
   // its stages'), split between the segment's ends as the closed faces lie
   // along it: [segment][end a x, end a y, end b x, end b y], N per metre of
@@ -164,6 +171,7 @@ class GasSolver {
   // and expanded as the wall moves (the density is its content over this).
   std::vector<double> fraction_;
   GasExchange<Dim> exchange_;
+  double solid_pressure_ = 0;
   GasTotals<Dim> stage_inflow_;  // the stage being differenced: per second
 };
 

@@ -1,5 +1,7 @@
 #include "src/solver/setup.hpp"
 
+#include "src/solver/gas_coupling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -120,6 +122,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     }
     s.loads.push_back(load);
   }
+  add_gas_loads(spec, s);
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include "src/core/float_mode.hpp"
 #include "src/core/ordered_sum.hpp"
 #include "src/solver/contact_setup.hpp"
+#include "src/solver/gas_coupling.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/one_rank_stepper.hpp"
 #include "src/solver/ranked_stepper.hpp"
@@ -37,14 +38,31 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
+  if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
   stepper_ = make_stepper(spec_, state_, followers);
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }
 
+Simulation::~Simulation() = default;
+
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
-  stepper_->advance(state_, steps, timers_);
+  if (!gas_) {
+    stepper_->advance(state_, steps, timers_);
+    return;
+  }
+  // The solid in the gas's windows: the gas steps at each window's start.
+  while (steps > 0) {
+    if (state_.step >= gas_->next_exchange()) {
+      SolverState& s = state_to_change();
+      auto t = timers_.time(Phase::gas);
+      gas_->exchange(s, spec_.dt);
+    }
+    const std::int64_t n = std::min(steps, gas_->next_exchange() - state_.step);
+    stepper_->advance(state_, n, timers_);
+    steps -= n;
+  }
 }
 
 void Simulation::refresh_fields() {

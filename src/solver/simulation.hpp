@@ -17,12 +17,14 @@
 namespace mpsolid {
 
 class Followers;
+class GasCoupling;
 
 class Simulation {
  public:
   // With `followers` (rank 0 of several MPI ranks: src/solver/ranked_stepper.hpp)
   // the case steps over the ranks; without, on this process.
   explicit Simulation(const CaseSpec& spec, Followers* followers = nullptr);
+  ~Simulation();
 
   // Advances `steps` time steps (no output). Over ranks, the particles stay
   // on their ranks until the state is next read.
@@ -62,6 +64,8 @@ class Simulation {
   // On one process with several threads: what crossed between them per
   // step (src/solver/thread_parts.hpp); threads = 0 when none stepped so.
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
+  // The case's gas, or nullptr without a [gas] section.
+  const GasCoupling* gas() const { return gas_.get(); }
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
@@ -71,6 +75,7 @@ class Simulation {
   // Over ranks, rank 0's copy: current after state() or refresh_fields().
   SolverState state_;
   std::unique_ptr<Stepper> stepper_;
+  std::unique_ptr<GasCoupling> gas_;
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;

@@ -98,8 +98,12 @@ TEST(GasWalls, SolidCellsAreTheCellsInsideAnOddNumberOfOutlines) {
       EXPECT_EQ(gas.solid({i, j}), inside(x[0], x[1])) << i << ", " << j;
       solid += gas.solid({i, j});
       // Every face between a solid and a gas cell is closed.
-      if (i > 0 && gas.solid({i, j}) != gas.solid({i - 1, j})) EXPECT_TRUE(gas.closed({i, j}, 0));
-      if (j > 0 && gas.solid({i, j}) != gas.solid({i, j - 1})) EXPECT_TRUE(gas.closed({i, j}, 1));
+      if (i > 0 && gas.solid({i, j}) != gas.solid({i - 1, j})) {
+        EXPECT_TRUE(gas.closed({i, j}, 0));
+      }
+      if (j > 0 && gas.solid({i, j}) != gas.solid({i, j - 1})) {
+        EXPECT_TRUE(gas.closed({i, j}, 1));
+      }
     }
   EXPECT_GT(solid, 150);
 }

@@ -1,0 +1,212 @@
+#include "src/solver/gas_coupling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "src/core/loads.hpp"
+#include "src/core/surface.hpp"
+#include "src/gas/shock_relations.hpp"
+
+namespace mpsolid {
+
+namespace {
+Surface body_surface(const CaseSpec& spec, int body) {
+  const Shape& shape = spec.bodies[static_cast<std::size_t>(body)].shape;
+  return build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
+}
+
+PressureSurface whole_surface(const CaseSpec& spec, const SolverState& s, int body) {
+  const Surface surface = body_surface(spec, body);
+  std::vector<std::uint32_t> all(surface.nodes());
+  for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
+  return make_pressure_surface(surface, all, s.body_ranges[static_cast<std::size_t>(body)].begin,
+                               0.0, spec.depth);
+}
+
+bool shape_contains(const Shape& shape, Point2 p) {
+  if (!region_contains(shape.region, p)) return false;
+  return std::none_of(shape.holes.begin(), shape.holes.end(),
+                      [&](const Region& hole) { return region_contains(hole, p); });
+}
+
+GasPrimitive<2> primitive_of(const GasStateSpec& s) {
+  return {s.density, {s.velocity[0], s.velocity[1]}, s.pressure};
+}
+
+// The gas behind the case's shock, moving with it.
+GasPrimitive<2> shocked(const GasSpec& g) {
+  const ShockedGas behind =
+      shocked_gas({g.initial.density, 0.0, g.initial.pressure}, g.mach, g.gamma);
+  return {behind.behind.rho, {g.direction * behind.behind.u, 0.0}, behind.behind.p};
+}
+}  // namespace
+
+void add_gas_loads(const CaseSpec& spec, SolverState& s) {
+  for (const int b : spec.gas.bodies) {
+    const BodySpec& body = spec.bodies[static_cast<std::size_t>(b)];
+    if (body.kind == Kind::wall) continue;  // walls never move: no load
+    StepLoad load;
+    load.name = kGasLoadPrefix + body.name;
+    load.range = s.body_ranges[static_cast<std::size_t>(b)];
+    load.surface = whole_surface(spec, s, b);
+    load.surface.given_fx.assign(load.surface.nodes(), 0.0);
+    load.surface.given_fy.assign(load.surface.nodes(), 0.0);
+    s.loads.push_back(std::move(load));
+  }
+}
+
+struct GasCoupling::Outline {
+  PressureSurface surface;  // its nodes' weights and its segments
+  int load = -1;            // its gas load in SolverState::loads, or -1 (a wall)
+  std::size_t first_piece = 0;
+};
+
+GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
+    : spec_(spec.gas), depth_(spec.depth) {
+  const GasSpec& g = spec_;
+  GasGrid<2> grid;
+  grid.h = g.cell;
+  grid.origin = {g.x[0], g.y[0]};
+  grid.cells = {static_cast<int>(std::round((g.x[1] - g.x[0]) / g.cell)),
+                static_cast<int>(std::round((g.y[1] - g.y[0]) / g.cell))};
+  GasSolver<2>::Boundaries edges;
+  for (int a = 0; a < 2; ++a)
+    for (int side = 0; side < 2; ++side) {
+      GasBoundary<2>& e = edges[a][side];
+      switch (g.edges[a][side]) {
+        case GasSpec::Edge::slip_wall:
+          e.kind = GasBoundaryKind::slip_wall;
+          break;
+        case GasSpec::Edge::outflow:
+          e.kind = GasBoundaryKind::outflow;
+          break;
+        case GasSpec::Edge::inflow:
+          e.kind = GasBoundaryKind::inflow;
+          e.state = g.inflow_given ? primitive_of(g.inflow) : shocked(g);
+          break;
+      }
+    }
+  gas_ = std::make_unique<GasSolver<2>>(grid, g.gamma, edges);
+  gas_->set_solid_pressure(g.reference_pressure);
+  const GasPrimitive<2> behind = g.mach > 0 ? shocked(g) : GasPrimitive<2>{};
+  for (int j = 0; j < grid.cells[1]; ++j)
+    for (int i = 0; i < grid.cells[0]; ++i) {
+      const auto c = grid.centre({i, j});
+      GasPrimitive<2> w = primitive_of(g.initial);
+      for (const GasSpec::Region& r : g.regions)
+        if (shape_contains(r.shape, {c[0], c[1]})) w = primitive_of(r.state);
+      if (g.mach > 0 && g.direction * (c[0] - g.shock_x) < 0) w = behind;
+      gas_->set({i, j}, w);
+    }
+  // The outlines, in the order of the case's bodies; each moving body's
+  // from its gas load.
+  std::size_t pieces = 0;
+  for (const int b : g.bodies) {
+    Outline o;
+    const std::string name = kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name;
+    const auto load = std::find_if(state.loads.begin(), state.loads.end(),
+                                   [&](const StepLoad& l) { return l.name == name; });
+    if (load != state.loads.end()) {
+      o.load = static_cast<int>(load - state.loads.begin());
+      o.surface = load->surface;
+    } else {
+      o.surface = whole_surface(spec, state, b);
+    }
+    o.first_piece = pieces;
+    pieces += o.surface.from.size();
+    outlines_.push_back(std::move(o));
+  }
+  gas_->set_walls(walls(state));
+}
+
+GasCoupling::~GasCoupling() = default;
+
+std::vector<GasWallSegment> GasCoupling::walls(const SolverState& state) const {
+  const ParticleStore& p = state.particles;
+  std::vector<GasWallSegment> out;
+  for (const Outline& o : outlines_) {
+    const PressureSurface& s = o.surface;
+    std::vector<Point2> x(s.nodes()), v(s.nodes());
+    for (std::size_t k = 0; k < s.nodes(); ++k) {
+      x[k] = affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
+      v[k] = affine_point(s.offsets, s.particle, s.weight, k, p.vx.data(), p.vy.data(), 0);
+    }
+    for (std::size_t g = 0; g < s.from.size(); ++g) {
+      const Point2 &a = x[s.from[g]], &b = x[s.to[g]], &va = v[s.from[g]], &vb = v[s.to[g]];
+      out.push_back({{a.x, a.y}, {b.x, b.y}, {va.x, va.y}, {vb.x, vb.y}});
+    }
+  }
+  return out;
+}
+
+void GasCoupling::exchange(SolverState& state, double dt) {
+  const std::vector<GasWallSegment> segments = walls(state);
+  gas_->set_walls(segments);
+  // The window: as many solid steps as the gas's CFL step holds, and no
+  // more than a wall crosses half a cell in; or one solid step in as many
+  // gas steps as it needs.
+  double fastest = 0;
+  for (const GasWallSegment& s : segments)
+    fastest = std::max({fastest, std::hypot(s.va[0], s.va[1]), std::hypot(s.vb[0], s.vb[1])});
+  const double gas_dt = gas_->stable_dt(spec_.cfl);
+  double fit = std::floor(gas_dt / dt);
+  if (fastest > 0) fit = std::min(fit, std::floor(0.5 * spec_.cell / (fastest * dt)));
+  const std::int64_t window = fit >= 1 ? static_cast<std::int64_t>(std::min(fit, 1e9)) : 1;
+  const int substeps = fit >= 1 ? 1 : static_cast<int>(std::ceil(dt / gas_dt));
+  const double step = static_cast<double>(window) * dt / substeps;
+  std::vector<std::array<double, 4>> forces(segments.size());
+  for (int k = 0; k < substeps; ++k) {
+    if (k > 0) gas_->set_walls(segments);
+    gas_->advance(step);
+    for (std::size_t g = 0; g < forces.size(); ++g)
+      for (int c = 0; c < 4; ++c) forces[g][c] += gas_->wall_forces()[g][c] / substeps;
+  }
+  gas_steps_ += substeps;
+  gas_time_ += static_cast<double>(window) * dt;
+  // Each moving body's node forces, N over the depth.
+  for (const Outline& o : outlines_) {
+    if (o.load < 0) continue;
+    PressureSurface& s = state.loads[static_cast<std::size_t>(o.load)].surface;
+    std::fill(s.given_fx.begin(), s.given_fx.end(), 0.0);
+    std::fill(s.given_fy.begin(), s.given_fy.end(), 0.0);
+    for (std::size_t g = 0; g < s.from.size(); ++g) {
+      const std::array<double, 4>& f = forces[o.first_piece + g];
+      s.given_fx[s.from[g]] += depth_ * f[0];
+      s.given_fy[s.from[g]] += depth_ * f[1];
+      s.given_fx[s.to[g]] += depth_ * f[2];
+      s.given_fy[s.to[g]] += depth_ * f[3];
+    }
+  }
+  next_ = state.step + window;
+}
+
+GasFigures GasCoupling::figures() const {
+  GasFigures f;
+  f.gas_steps = gas_steps_;
+  f.gas_time = gas_time_;
+  const GasTotals<2> t = gas_->totals();
+  const GasExchange<2>& x = gas_->exchange();
+  f.mass = depth_ * t.mass;
+  f.energy = depth_ * t.energy;
+  f.inflow_energy = depth_ * x.inflow.energy;
+  f.wall_work = depth_ * x.wall_work;
+  f.solid_work = depth_ * x.solid_work;
+  f.lost_energy = depth_ * x.lost.energy;
+  const GasGrid<2>& grid = gas_->grid();
+  for (const GasSpec::Probe& p : spec_.probes) {
+    const std::array<int, 2> cell{
+        std::clamp(static_cast<int>(std::floor((p.at[0] - grid.origin[0]) / grid.h)), 0,
+                   grid.cells[0] - 1),
+        std::clamp(static_cast<int>(std::floor((p.at[1] - grid.origin[1]) / grid.h)), 0,
+                   grid.cells[1] - 1)};
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const bool inside = gas_->solid(cell);
+    const GasPrimitive<2> w = gas_->primitive(cell);
+    f.probe_p.push_back(inside ? nan : w.p);
+    f.probe_rho.push_back(inside ? nan : w.rho);
+  }
+  return f;
+}
+
+}  // namespace mpsolid
