@@ -46,6 +46,9 @@ std::string describe_particle(Simulation& sim, std::size_t i) {
 // Where, when and which criterion, in words (the state is the failing one).
 std::string describe_failure(Simulation& sim, const StabilityVerdict& v,
                              std::int64_t last_good_step) {
+  if (!v.where.empty())
+    return fmt::format("{} at t = {:.6g} s (step {}; last good check at step {}): {}", v.criterion,
+                       sim.time(), sim.step(), last_good_step, v.where);
   std::string text = fmt::format(
       "{} at t = {:.6g} s (step {}, checked every {} steps; last good "
       "check at step {}): {}",
@@ -57,6 +60,13 @@ std::string describe_failure(Simulation& sim, const StabilityVerdict& v,
 }
 
 Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_good_step) {
+  if (!v.where.empty())
+    return {{"criterion", v.criterion},
+            {"time", sim.time()},
+            {"step", sim.step()},
+            {"where", v.where},
+            {"last_good_step", last_good_step},
+            {"last_good_time", sim.spec().time_at(last_good_step)}};
   const ParticleStore& p = sim.particles();
   const std::size_t i = v.particle;
   return {{"criterion", v.criterion},
@@ -73,7 +83,7 @@ Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_
 }
 
 RunReportInputs report_inputs(Simulation& sim) {
-  return {sim.spec(), sim.state(), sim.timers(), sim.stable_step()};
+  return {sim.spec(), sim.state(), sim.timers(), sim.stable_step(), sim.gas_saved()};
 }
 
 void print_summary(Simulation& sim, const RunFacts& facts, const RunOptions& options) {
@@ -159,11 +169,12 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     checkpoint();
   }
   StateSnapshot last_good = StateSnapshot::capture(sim.state());
+  sim.remember_gas();
   facts.outcome = Outcome::completed;
   ThreadGovernor governor(facts.threads, options.adaptive_threads);
   while (sim.step() < every.total) {
     const std::int64_t next = every.next_stop(sim.step());
-    while (sim.step() < next && !stop_requested()) {
+    while (sim.step() < next && !stop_requested() && !sim.gas_failed()) {
       set_thread_count(governor.threads());
       const auto started = std::chrono::steady_clock::now();
       const double waited = team_wait_seconds();
@@ -183,10 +194,12 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
       // Keep the last good state as the final frame of the outputs.
       last_good.restore(sim.state_to_change());
+      sim.restore_gas();
       if (sim.step() != outputs.last_frame_step()) write_frame(sim.diagnostics());
       break;
     }
     last_good = StateSnapshot::capture(sim.state());
+    sim.remember_gas();
     const std::int64_t step = sim.step();
     if (step == every.total || step % every.frame == 0) write_frame(d);
     if (step % every.history == 0) {
@@ -395,6 +408,12 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   check_memory(spec, facts.threads, available_memory_bytes());
   Simulation sim(spec, options.followers);
   restore_state(sim.state_to_change(), checkpoint, path.string());
+  try {
+    sim.restore_gas_saved(checkpoint.gas);
+  } catch (const InputError& e) {
+    throw InputError(
+        fmt::format("{}: the checkpoint does not fit this case: {}", path.string(), e.what()));
+  }
   return with_failed_writes_explained(options.out_dir, [&] {
     RunFolder outputs = resumed_outputs(options.out_dir, sim, checkpoint);
     if (lock) lock->record_owner();

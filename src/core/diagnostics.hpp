@@ -1,9 +1,27 @@
 #pragma once
+#include <cstdint>
+#include <vector>
 // Whole-system figures at a frame: energies (MODEL.md section 4b), momenta
 // (about the origin, spins included) and the largest speed.
 #include "src/core/solver_state.hpp"
 
 namespace mpsolid {
+
+// The gas's figures (a case with [gas]): its steps, its totals and what it
+// exchanged (J, over the depth), and its probes.
+struct GasFigures {
+  std::int64_t gas_steps = 0;
+  double gas_time = 0;          // s: how far the gas has stepped
+  double mass = 0, energy = 0;  // kg, J
+  double inflow_energy = 0;     // J: in through the grid's edges since the start
+  double wall_work = 0;         // J: the gas's work on the bodies
+  double solid_work = 0;        // J: the reference pressure's work on the bodies
+  double lost_energy = 0;       // J: in cells covered with no gas next to them
+  // J: the bodies' work from their gas loads less what the gas and the
+  // reference pressure did on them (the coupling windows' error).
+  double coupling_error = 0;
+  std::vector<double> probe_p, probe_rho;  // at each probe (NaN inside a body)
+};
 
 struct Diagnostics {
   double kinetic_energy = 0;  // translational + rotational
@@ -17,6 +35,7 @@ struct Diagnostics {
   double momentum_x = 0, momentum_y = 0;
   double angular_momentum = 0;
   double max_speed = 0;
+  GasFigures gas;  // zeros without a gas
 };
 
 // Kinetic energy, momenta and max speed of the moving particles.

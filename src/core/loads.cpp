@@ -179,6 +179,17 @@ void pressure_forces(StepLoad& load) {
     }
 }
 
+void close_running_step(const ParticleStore& p, StepLoad& load) {
+  if (!load.active) return;
+  PressureSurface& s = load.surface;
+  load.work += running_pressure_work(p, s);
+  for (std::size_t k = 0; k < s.nodes(); ++k) {
+    const Point2 now = node_now(p, s, k);
+    s.x[k] = now.x;
+    s.y[k] = now.y;
+  }
+}
+
 bool any_pressure(const std::vector<StepLoad>& loads) {
   return std::any_of(loads.begin(), loads.end(), [](const StepLoad& l) { return l.is_pressure(); });
 }

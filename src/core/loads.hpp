@@ -88,6 +88,13 @@ struct StepLoad {
 // load's running step is restored (a checkpoint, a rank's slice).
 void pressure_forces(StepLoad& load);
 
+// A pressure load whose node forces are about to be changed between steps
+// (a gas load's, by the gas): adds the running step's work so far to its
+// work and restarts the running step at the nodes' current positions (the
+// whole state: every node's particles at hand), so the work is the same
+// whichever way the new forces reach the particles.
+void close_running_step(const ParticleStore& p, StepLoad& load);
+
 // Whether any of `loads` is a pressure.
 bool any_pressure(const std::vector<StepLoad>& loads);
 

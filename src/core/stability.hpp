@@ -21,6 +21,8 @@ struct StabilityVerdict {
   // that came too close (contact).
   const char* neighbor_role = "bonded to";
   double value = 0, limit = 0;
+  // What failed and where, in words, when no particle is to blame (the gas).
+  std::string where;
 };
 
 // First non-finite position, velocity, rotation or angular velocity.

@@ -98,6 +98,13 @@ void GasSolver<Dim>::set(const std::array<int, Dim>& cell, const GasPrimitive<Di
 }
 
 template <int Dim>
+void GasSolver<Dim>::set_conserved(int v, const std::vector<double>& values) {
+  if (v < 0 || v >= kVars || values.size() != grid_.storage())
+    throw std::invalid_argument("set_conserved: not a variable of this grid");
+  q_[static_cast<std::size_t>(v)] = values;
+}
+
+template <int Dim>
 GasPrimitive<Dim> GasSolver<Dim>::primitive(const std::array<int, Dim>& cell) const {
   const std::size_t k = grid_.index(cell);
   GasConserved<Dim> q;

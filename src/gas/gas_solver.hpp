@@ -106,6 +106,10 @@ class GasSolver {
     return !blocked_.empty() && closed_[axis][grid_.index(cell)] >= 0;
   }
   const GasExchange<Dim>& exchange() const { return exchange_; }
+  // A saved gas put back (after set_walls with the walls it had): conserved
+  // variable v over the whole storage, and the exchange so far.
+  void set_conserved(int v, const std::vector<double>& values);
+  void set_exchange(const GasExchange<Dim>& x) { exchange_ = x; }
   // The pressure a solid cell pushes its walls with (0 by default): a
   // body's unstressed state at an ambient pressure feels only the gas's
   // excess over it.

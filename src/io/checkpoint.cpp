@@ -52,6 +52,10 @@ std::uint64_t content_hash(const Checkpoint& c) {
       for (const double v : {l.factor, l.cx_last, l.cy_last, l.work}) h.value(v);
     for (const double v : l.surface_xy) h.value(v);
   }
+  for (const auto& [name, values] : c.gas) {
+    h.text(name);
+    h.bytes(values.data(), values.size() * sizeof(double));
+  }
   return h.value();
 }
 
@@ -85,8 +89,9 @@ Checkpoint capture_state(const SolverState& state) {
   for (const StepLoad& l : state.loads) {
     c.loads.push_back(
         {l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work, l.surface.x});
-    c.loads.back().surface_xy.insert(c.loads.back().surface_xy.end(), l.surface.y.begin(),
-                                     l.surface.y.end());
+    std::vector<double>& xy = c.loads.back().surface_xy;
+    for (const std::vector<double>* v : {&l.surface.y, &l.surface.given_fx, &l.surface.given_fy})
+      xy.insert(xy.end(), v->begin(), v->end());
   }
   return c;
 }
@@ -124,8 +129,9 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     if (c.loads[l].name != s.loads[l].name)
       refuse(fmt::format("load '{}' in the checkpoint, '{}' in the case", c.loads[l].name,
                          s.loads[l].name));
-    else if (c.loads[l].surface_xy.size() != 2 * s.loads[l].surface.nodes() &&
-             s.loads[l].is_pressure())
+    else if (s.loads[l].is_pressure() &&
+             c.loads[l].surface_xy.size() !=
+                 2 * s.loads[l].surface.nodes() + 2 * s.loads[l].surface.given_fx.size())
       refuse(fmt::format("load '{}' has {} surface nodes in the checkpoint, {} in the case",
                          c.loads[l].name, c.loads[l].surface_xy.size() / 2,
                          s.loads[l].surface.nodes()));
@@ -158,8 +164,13 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     if (StepLoad& load = s.loads[l]; load.is_pressure()) {
       const std::vector<double>& xy = c.loads[l].surface_xy;
       const std::size_t n = load.surface.nodes();
-      std::copy_n(xy.begin(), n, load.surface.x.begin());
-      std::copy_n(xy.begin() + static_cast<long>(n), n, load.surface.y.begin());
+      auto at = xy.begin();
+      for (std::vector<double>* v :
+           {&load.surface.x, &load.surface.y, &load.surface.given_fx, &load.surface.given_fy}) {
+        std::copy_n(at, v->size(), v->begin());
+        at += static_cast<long>(v->size());
+      }
+      (void)n;
       if (load.active) pressure_forces(load);
     }
   }
@@ -232,6 +243,15 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     }
     loads.write("surface_sizes", surface_sizes);
     loads.write("surfaces", surfaces);
+    if (!c.gas.empty()) {
+      const h5::Group gas = file.create_group("gas");
+      std::vector<std::string> names;
+      for (const auto& [name, values] : c.gas) {
+        gas.write(name, values);
+        names.push_back(name);
+      }
+      gas.write_strings("_order", names);
+    }
     file.close();
   }
   const std::uintmax_t bytes = std::filesystem::file_size(staged);
@@ -327,6 +347,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
                                      surfaces.begin() + static_cast<long>(at + size));
         at += size;
       }
+    }
+    if (file.has("gas")) {
+      const h5::Group gas = file.open_group("gas");
+      for (const std::string& name : gas.read_strings("_order"))
+        c.gas.emplace_back(
+            name, gas.read<double>(name, static_cast<std::size_t>(gas.info(name).dims.at(0))));
     }
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));

@@ -39,7 +39,8 @@ struct LoadState {
   // A varying load's (src/core/loads.hpp): factor, centroid at the last
   // step's start, work before it.
   double factor = 1, cx_last = 0, cy_last = 0, work = 0;
-  // A pressure's: its nodes' x at the last step's start, then their y.
+  // A pressure's: its nodes' x at the last step's start, then their y; a
+  // gas load's then its given node forces, x then y.
   std::vector<double> surface_xy;
 };
 
@@ -56,6 +57,9 @@ struct Checkpoint {
   std::vector<std::pair<std::string, std::vector<double>>> particle_arrays;  // id order
   std::vector<RigidBodyState> rigid_bodies;
   std::vector<LoadState> loads;
+  // The gas (a case with [gas]): named arrays, as the gas coupling saves
+  // them (src/solver/gas_coupling.hpp); empty without a gas.
+  std::vector<std::pair<std::string, std::vector<double>>> gas;
 };
 
 // The evolving state and its step (the other fields are left empty).

@@ -30,6 +30,14 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
   for (const StepLoad& l : state.loads)
     if (!l.history.constant() || l.is_pressure())
       for (const char* suffix : {".factor", ".work"}) cols.push_back("load." + l.name + suffix);
+  if (spec.gas.enabled) {
+    for (const char* name :
+         {"gas.steps", "gas.time", "gas.mass", "gas.energy", "gas.inflow_energy", "gas.wall_work",
+          "gas.solid_work", "gas.lost_energy", "gas.coupling_error"})
+      cols.push_back(name);
+    for (const GasSpec::Probe& probe : spec.gas.probes)
+      for (const char* suffix : {".p", ".rho"}) cols.push_back("gas." + probe.name + suffix);
+  }
   return cols;
 }
 
@@ -58,6 +66,14 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
   for (const StepLoad& l : state.loads)
     if (!l.history.constant() || l.is_pressure())
       row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});
+  if (spec.gas.enabled) {
+    const GasFigures& g = d.gas;
+    row.insert(row.end(),
+               {static_cast<double>(g.gas_steps), g.gas_time, g.mass, g.energy, g.inflow_energy,
+                g.wall_work, g.solid_work, g.lost_energy, g.coupling_error});
+    for (std::size_t k = 0; k < spec.gas.probes.size(); ++k)
+      row.insert(row.end(), {g.probe_p[k], g.probe_rho[k]});
+  }
   return row;
 }
 

@@ -154,6 +154,7 @@ void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts) {
     frames_.publish_copy();
   }
   Checkpoint c = capture_state(state);
+  c.gas = in.gas;
   c.case_toml = spec.resolved_toml;
   c.bond_hash = bond_hash_;
   c.run_id = run_id_;

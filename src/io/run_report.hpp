@@ -64,6 +64,8 @@ struct RunReportInputs {
   const SolverState& state;
   const PhaseTimers& timers;
   const StableStepEstimate& stable_step;
+  // The gas's named arrays for a checkpoint (empty without a gas).
+  std::vector<std::pair<std::string, std::vector<double>>> gas = {};
 };
 
 // One segment as a JSON object.

@@ -1,5 +1,7 @@
 #include "src/solver/gas_coupling.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,15 +58,8 @@ void add_gas_loads(const CaseSpec& spec, SolverState& s) {
   }
 }
 
-struct GasCoupling::Outline {
-  PressureSurface surface;  // its nodes' weights and its segments
-  int load = -1;            // its gas load in SolverState::loads, or -1 (a wall)
-  std::size_t first_piece = 0;
-};
-
-GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
-    : spec_(spec.gas), depth_(spec.depth) {
-  const GasSpec& g = spec_;
+namespace {
+GasSolver<2> make_gas(const GasSpec& g) {
   GasGrid<2> grid;
   grid.h = g.cell;
   grid.origin = {g.x[0], g.y[0]};
@@ -87,8 +82,8 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
           break;
       }
     }
-  gas_ = std::make_unique<GasSolver<2>>(grid, g.gamma, edges);
-  gas_->set_solid_pressure(g.reference_pressure);
+  GasSolver<2> gas(grid, g.gamma, edges);
+  gas.set_solid_pressure(g.reference_pressure);
   const GasPrimitive<2> behind = g.mach > 0 ? shocked(g) : GasPrimitive<2>{};
   for (int j = 0; j < grid.cells[1]; ++j)
     for (int i = 0; i < grid.cells[0]; ++i) {
@@ -97,8 +92,15 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
       for (const GasSpec::Region& r : g.regions)
         if (shape_contains(r.shape, {c[0], c[1]})) w = primitive_of(r.state);
       if (g.mach > 0 && g.direction * (c[0] - g.shock_x) < 0) w = behind;
-      gas_->set({i, j}, w);
+      gas.set({i, j}, w);
     }
+  return gas;
+}
+}  // namespace
+
+GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
+    : spec_(spec.gas), depth_(spec.depth), gas_(make_gas(spec.gas)) {
+  const GasSpec& g = spec_;
   // The outlines, in the order of the case's bodies; each moving body's
   // from its gas load.
   std::size_t pieces = 0;
@@ -117,10 +119,9 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
     pieces += o.surface.from.size();
     outlines_.push_back(std::move(o));
   }
-  gas_->set_walls(walls(state));
+  last_walls_ = walls(state);
+  gas_.set_walls(last_walls_);
 }
-
-GasCoupling::~GasCoupling() = default;
 
 std::vector<GasWallSegment> GasCoupling::walls(const SolverState& state) const {
   const ParticleStore& p = state.particles;
@@ -141,15 +142,16 @@ std::vector<GasWallSegment> GasCoupling::walls(const SolverState& state) const {
 }
 
 void GasCoupling::exchange(SolverState& state, double dt) {
-  const std::vector<GasWallSegment> segments = walls(state);
-  gas_->set_walls(segments);
+  last_walls_ = walls(state);
+  const std::vector<GasWallSegment>& segments = last_walls_;
+  gas_.set_walls(segments);
   // The window: as many solid steps as the gas's CFL step holds, and no
   // more than a wall crosses half a cell in; or one solid step in as many
   // gas steps as it needs.
   double fastest = 0;
   for (const GasWallSegment& s : segments)
     fastest = std::max({fastest, std::hypot(s.va[0], s.va[1]), std::hypot(s.vb[0], s.vb[1])});
-  const double gas_dt = gas_->stable_dt(spec_.cfl);
+  const double gas_dt = gas_.stable_dt(spec_.cfl);
   double fit = std::floor(gas_dt / dt);
   if (fastest > 0) fit = std::min(fit, std::floor(0.5 * spec_.cell / (fastest * dt)));
   const std::int64_t window = fit >= 1 ? static_cast<std::int64_t>(std::min(fit, 1e9)) : 1;
@@ -157,17 +159,19 @@ void GasCoupling::exchange(SolverState& state, double dt) {
   const double step = static_cast<double>(window) * dt / substeps;
   std::vector<std::array<double, 4>> forces(segments.size());
   for (int k = 0; k < substeps; ++k) {
-    if (k > 0) gas_->set_walls(segments);
-    gas_->advance(step);
+    if (k > 0) gas_.set_walls(segments);
+    gas_.advance(step);
     for (std::size_t g = 0; g < forces.size(); ++g)
-      for (int c = 0; c < 4; ++c) forces[g][c] += gas_->wall_forces()[g][c] / substeps;
+      for (int c = 0; c < 4; ++c) forces[g][c] += gas_.wall_forces()[g][c] / substeps;
   }
   gas_steps_ += substeps;
   gas_time_ += static_cast<double>(window) * dt;
   // Each moving body's node forces, N over the depth.
   for (const Outline& o : outlines_) {
     if (o.load < 0) continue;
-    PressureSurface& s = state.loads[static_cast<std::size_t>(o.load)].surface;
+    StepLoad& load = state.loads[static_cast<std::size_t>(o.load)];
+    close_running_step(state.particles, load);
+    PressureSurface& s = load.surface;
     std::fill(s.given_fx.begin(), s.given_fx.end(), 0.0);
     std::fill(s.given_fy.begin(), s.given_fy.end(), 0.0);
     for (std::size_t g = 0; g < s.from.size(); ++g) {
@@ -177,23 +181,88 @@ void GasCoupling::exchange(SolverState& state, double dt) {
       s.given_fx[s.to[g]] += depth_ * f[2];
       s.given_fy[s.to[g]] += depth_ * f[3];
     }
+    if (load.active) pressure_forces(load);
   }
   next_ = state.step + window;
 }
 
-GasFigures GasCoupling::figures() const {
+GasCoupling::Saved GasCoupling::saved() const {
+  Saved out;
+  const char* names[] = {"rho", "rho_u", "rho_v", "E"};
+  for (int v = 0; v < GasSolver<2>::kVars; ++v) out.emplace_back(names[v], gas_.conserved(v));
+  std::vector<double> walls;
+  for (const GasWallSegment& w : last_walls_)
+    walls.insert(walls.end(), {w.a[0], w.a[1], w.b[0], w.b[1], w.va[0], w.va[1], w.vb[0], w.vb[1]});
+  out.emplace_back("walls", walls);
+  const GasExchange<2>& x = gas_.exchange();
+  out.emplace_back("exchange",
+                   std::vector<double>{x.inflow.mass, x.inflow.momentum[0], x.inflow.momentum[1],
+                                       x.inflow.energy, x.wall_impulse[0], x.wall_impulse[1],
+                                       x.wall_work, x.solid_work, x.lost.mass, x.lost.momentum[0],
+                                       x.lost.momentum[1], x.lost.energy});
+  out.emplace_back("clock", std::vector<double>{static_cast<double>(next_),
+                                                static_cast<double>(gas_steps_), gas_time_});
+  return out;
+}
+
+void GasCoupling::restore(const Saved& saved) {
+  const auto find = [&](const std::string& name, std::size_t size) -> const std::vector<double>& {
+    for (const auto& [n, values] : saved)
+      if (n == name) {
+        if (size > 0 && values.size() != size)
+          throw InputError(fmt::format("the checkpoint's gas.{} has {} values, this gas needs {}",
+                                       name, values.size(), size));
+        return values;
+      }
+    throw InputError(
+        fmt::format("the checkpoint has no gas.{}: it was written for a case "
+                    "without this gas",
+                    name));
+  };
+  const std::vector<double>& w = find("walls", 8 * last_walls_.size());
+  std::vector<GasWallSegment> walls(last_walls_.size());
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    const double* v = w.data() + 8 * k;
+    walls[k] = {{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}, {v[6], v[7]}};
+  }
+  gas_ = make_gas(spec_);
+  last_walls_ = walls;
+  gas_.set_walls(last_walls_);
+  const char* names[] = {"rho", "rho_u", "rho_v", "E"};
+  for (int v = 0; v < GasSolver<2>::kVars; ++v)
+    gas_.set_conserved(v, find(names[v], gas_.grid().storage()));
+  const std::vector<double>& e = find("exchange", 12);
+  GasExchange<2> x;
+  x.inflow = {e[0], {e[1], e[2]}, e[3]};
+  x.wall_impulse = {e[4], e[5]};
+  x.wall_work = e[6];
+  x.solid_work = e[7];
+  x.lost = {e[8], {e[9], e[10]}, e[11]};
+  gas_.set_exchange(x);
+  const std::vector<double>& clock = find("clock", 3);
+  next_ = static_cast<std::int64_t>(clock[0]);
+  gas_steps_ = static_cast<std::int64_t>(clock[1]);
+  gas_time_ = clock[2];
+}
+
+GasFigures GasCoupling::figures(const SolverState& state) const {
   GasFigures f;
   f.gas_steps = gas_steps_;
   f.gas_time = gas_time_;
-  const GasTotals<2> t = gas_->totals();
-  const GasExchange<2>& x = gas_->exchange();
+  const GasTotals<2> t = gas_.totals();
+  const GasExchange<2>& x = gas_.exchange();
   f.mass = depth_ * t.mass;
   f.energy = depth_ * t.energy;
   f.inflow_energy = depth_ * x.inflow.energy;
   f.wall_work = depth_ * x.wall_work;
   f.solid_work = depth_ * x.solid_work;
   f.lost_energy = depth_ * x.lost.energy;
-  const GasGrid<2>& grid = gas_->grid();
+  double load_work_total = 0;
+  for (const Outline& o : outlines_)
+    if (o.load >= 0)
+      load_work_total += load_work(state.particles, state.loads[static_cast<std::size_t>(o.load)]);
+  f.coupling_error = load_work_total - f.wall_work - f.solid_work;
+  const GasGrid<2>& grid = gas_.grid();
   for (const GasSpec::Probe& p : spec_.probes) {
     const std::array<int, 2> cell{
         std::clamp(static_cast<int>(std::floor((p.at[0] - grid.origin[0]) / grid.h)), 0,
@@ -201,8 +270,8 @@ GasFigures GasCoupling::figures() const {
         std::clamp(static_cast<int>(std::floor((p.at[1] - grid.origin[1]) / grid.h)), 0,
                    grid.cells[1] - 1)};
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const bool inside = gas_->solid(cell);
-    const GasPrimitive<2> w = gas_->primitive(cell);
+    const bool inside = gas_.solid(cell);
+    const GasPrimitive<2> w = gas_.primitive(cell);
     f.probe_p.push_back(inside ? nan : w.p);
     f.probe_rho.push_back(inside ? nan : w.rho);
   }

@@ -11,11 +11,12 @@
 // gas stage; the windows' error is the work of the held forces against the
 // nodes' actual motion, kept in the balance.
 #include <cstdint>
-#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "src/case/case_spec.hpp"
+#include "src/core/diagnostics.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/gas/gas_solver.hpp"
 
@@ -29,24 +30,11 @@ inline constexpr const char* kGasLoadPrefix = "gas.";
 // (at set-up, after the case's own loads).
 void add_gas_loads(const CaseSpec& spec, SolverState& s);
 
-// One row of the gas's figures for history.csv and run.json.
-struct GasFigures {
-  std::int64_t gas_steps = 0;
-  double gas_time = 0;                     // s: how far the gas has stepped
-  double mass = 0, energy = 0;             // kg, J (per metre of depth times the depth)
-  double inflow_energy = 0;                // J: through the grid's edges since the start
-  double wall_work = 0;                    // J: the gas's work on the bodies
-  double solid_work = 0;                   // J: the reference pressure's work on the bodies
-  double lost_energy = 0;                  // J: in cells covered with no gas next to them
-  std::vector<double> probe_p, probe_rho;  // at each probe (NaN inside a body)
-};
-
 class GasCoupling {
  public:
   // The gas's grid, initial state and walls from `spec` and the bodies in
   // `state` (whose gas loads add_gas_loads made).
   GasCoupling(const CaseSpec& spec, const SolverState& state);
-  ~GasCoupling();
 
   // The step at which the next window starts (the gas is due).
   std::int64_t next_exchange() const { return next_; }
@@ -55,16 +43,32 @@ class GasCoupling {
   // GasFailure (the gas as it was) when the gas went unphysical.
   void exchange(SolverState& state, double dt);
 
-  GasFigures figures() const;
-  const GasSolver<2>& gas() const { return *gas_; }
+  // Everything a resumed run needs to go on with the same bits, as named
+  // arrays (for checkpoint.h5), and put back from them (after the state's
+  // restore). Throws InputError when they do not fit this gas.
+  using Saved = std::vector<std::pair<std::string, std::vector<double>>>;
+  Saved saved() const;
+  void restore(const Saved& saved);
+
+  // The figures, with the coupling error from the gas loads' work in `state`.
+  GasFigures figures(const SolverState& state) const;
+  const GasSolver<2>& gas() const { return gas_; }
 
  private:
-  struct Outline;  // a coupled body's surface as the gas sees it
+  // A coupled body's surface as the gas sees it: its nodes' weights and its
+  // segments, its gas load in SolverState::loads (-1 for a wall), and its
+  // first segment among the gas's walls.
+  struct Outline {
+    PressureSurface surface;
+    int load = -1;
+    std::size_t first_piece = 0;
+  };
   std::vector<GasWallSegment> walls(const SolverState& state) const;
 
   GasSpec spec_;
   double depth_;
-  std::unique_ptr<GasSolver<2>> gas_;
+  GasSolver<2> gas_;
+  std::vector<GasWallSegment> last_walls_;  // as the gas has them
   std::vector<Outline> outlines_;
   std::int64_t next_ = 0;
   std::int64_t gas_steps_ = 0;

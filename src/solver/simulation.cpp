@@ -53,11 +53,17 @@ void Simulation::advance(std::int64_t steps) {
     return;
   }
   // The solid in the gas's windows: the gas steps at each window's start.
-  while (steps > 0) {
+  while (steps > 0 && !gas_failed()) {
     if (state_.step >= gas_->next_exchange()) {
       SolverState& s = state_to_change();
       auto t = timers_.time(Phase::gas);
-      gas_->exchange(s, spec_.dt);
+      try {
+        gas_->exchange(s, spec_.dt);
+      } catch (const GasFailure& e) {
+        gas_failure_ = fmt::format("{} in the gas step from t = {:.6g} s (step {})", e.what(),
+                                   time(), state_.step);
+        return;
+      }
     }
     const std::int64_t n = std::min(steps, gas_->next_exchange() - state_.step);
     stepper_->advance(state_, n, timers_);
@@ -96,6 +102,7 @@ Diagnostics Simulation::current_diagnostics() {
     const ClosestContact closest = closest_contact(c, state_.particles, state_.bonds, reach);
     d.contact_min_distance = closest.found ? closest.distance : reach;
   }
+  if (gas_) d.gas = gas_->figures(state_);
   return d;
 }
 
@@ -104,8 +111,39 @@ Diagnostics Simulation::diagnostics() {
   return current_diagnostics();
 }
 
+void Simulation::remember_gas() {
+  if (!gas_) return;
+  if (gas_last_good_)
+    *gas_last_good_ = *gas_;
+  else
+    gas_last_good_ = std::make_unique<GasCoupling>(*gas_);
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> Simulation::gas_saved() const {
+  return gas_ ? gas_->saved() : GasCoupling::Saved{};
+}
+
+void Simulation::restore_gas_saved(const GasCoupling::Saved& saved) {
+  if (!gas_ && saved.empty()) return;
+  if (!gas_) throw InputError("the checkpoint holds a gas, the case has none");
+  gas_->restore(saved);
+}
+
+void Simulation::restore_gas() {
+  if (!gas_ || !gas_last_good_) return;
+  *gas_ = *gas_last_good_;
+  gas_failure_.clear();
+}
+
 StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   const ParticleStore& p = state().particles;
+  if (gas_failed()) {
+    StabilityVerdict gas;
+    gas.ok = false;
+    gas.criterion = "unphysical gas";
+    gas.where = gas_failure_;
+    return gas;
+  }
   StabilityVerdict v = check_finite(p);
   if (!v.ok) return v;
   refresh_fields();

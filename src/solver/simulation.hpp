@@ -4,6 +4,8 @@
 // fixed (dt chosen). The run loop with outputs lives in src/app/run.hpp.
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "src/case/case_spec.hpp"
@@ -66,6 +68,17 @@ class Simulation {
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
   // The case's gas, or nullptr without a [gas] section.
   const GasCoupling* gas() const { return gas_.get(); }
+  // Whether the gas went unphysical in an advance (which then stopped at
+  // the window where it did; check_stability reports it).
+  bool gas_failed() const { return !gas_failure_.empty(); }
+  // The gas as it is now kept, or put back, as the last good state (with
+  // the particles' StateSnapshot): nothing without a gas.
+  void remember_gas();
+  void restore_gas();
+  // The gas as named arrays for a checkpoint (empty without a gas), and put
+  // back from a checkpoint's (after its state's restore).
+  std::vector<std::pair<std::string, std::vector<double>>> gas_saved() const;
+  void restore_gas_saved(const std::vector<std::pair<std::string, std::vector<double>>>& saved);
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
@@ -75,7 +88,8 @@ class Simulation {
   // Over ranks, rank 0's copy: current after state() or refresh_fields().
   SolverState state_;
   std::unique_ptr<Stepper> stepper_;
-  std::unique_ptr<GasCoupling> gas_;
+  std::unique_ptr<GasCoupling> gas_, gas_last_good_;
+  std::string gas_failure_;  // what went unphysical, where and when
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
