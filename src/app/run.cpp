@@ -154,7 +154,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
   // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(sim.state(), sim.spec(), d);
+    outputs.write_frame(sim.state(), sim.spec(), d, sim.gas_frame());
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {

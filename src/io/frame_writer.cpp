@@ -29,6 +29,16 @@ const std::vector<XdmfField>& frame_fields() {
   return fields;
 }
 
+const std::vector<XdmfField>& gas_frame_fields() {
+  static const std::vector<XdmfField> fields = {
+      {"gas_density", "Float", 8, 1},
+      {"gas_velocity", "Float", 8, 2},
+      {"gas_pressure", "Float", 8, 1},
+      {"gas_solid", "Char", 1, 1},
+  };
+  return fields;
+}
+
 struct FrameWriter::File {
   h5::File file;
   h5::Group frames;
@@ -96,6 +106,11 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& s
       const h5::Group group = file_->frames.open_group(frame_group(k));
       frames_.push_back({"/frames/" + frame_group(k), group.attribute<double>("time")});
     }
+    if (file_->file.has_attribute("gas_nx"))
+      gas_grid_ = {static_cast<int>(file_->file.attribute<std::int64_t>("gas_nx")),
+                   static_cast<int>(file_->file.attribute<std::int64_t>("gas_ny")),
+                   file_->file.attribute<double>("gas_x0"), file_->file.attribute<double>("gas_y0"),
+                   file_->file.attribute<double>("gas_cell")};
     file_->file.flush();
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: cannot continue it: {}", path.string(), e.what()));
@@ -118,7 +133,7 @@ std::uint64_t frames_run_id(const std::filesystem::path& path) {
   }
 }
 
-void FrameWriter::write(const SolverState& state, const CaseSpec& spec) {
+void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas) {
   const ParticleStore& p = state.particles;
   const auto& order = file_->storage_of_id;
   const int index = frames_total();
@@ -188,6 +203,20 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec) {
   group.write("pressure", gather(p.pressure), 1, level);
   group.write("surface", surface_flag, 1, level);
   group.write("normal", gather_pair(nx, ny), 2, level);
+  if (!gas.empty()) {
+    group.write("gas_density", gas.density, 1, level);
+    group.write("gas_velocity", gas.velocity, 2, level);
+    group.write("gas_pressure", gas.pressure, 1, level);
+    group.write("gas_solid", gas.solid, 1, level);
+    if (gas_grid_.nx == 0) {
+      gas_grid_ = {gas.nx, gas.ny, gas.x0, gas.y0, gas.h};
+      file_->file.set_attribute<std::int64_t>("gas_nx", gas.nx);
+      file_->file.set_attribute<std::int64_t>("gas_ny", gas.ny);
+      file_->file.set_attribute<double>("gas_x0", gas.x0);
+      file_->file.set_attribute<double>("gas_y0", gas.y0);
+      file_->file.set_attribute<double>("gas_cell", gas.h);
+    }
+  }
   file_->file.flush();  // a crashed run keeps its frames in the staging file
   frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
 }
@@ -198,8 +227,9 @@ std::uintmax_t FrameWriter::bytes_written() const {
 }
 
 void FrameWriter::write_sidecar() const {
-  write_file_atomically(sidecar_path(path_), xdmf_document(path_.filename().string(), particles_,
-                                                           frames_, frame_fields()));
+  write_file_atomically(sidecar_path(path_),
+                        xdmf_document(path_.filename().string(), particles_, frames_,
+                                      frame_fields(), gas_grid_, gas_frame_fields()));
 }
 
 void FrameWriter::publish_copy() {

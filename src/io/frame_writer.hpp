@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "src/case/case_spec.hpp"
+#include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/surface.hpp"
 #include "src/io/xdmf_writer.hpp"
@@ -28,8 +29,9 @@ class FrameWriter {
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
-  // The current state (fields must be refreshed) as the next frame.
-  void write(const SolverState& state, const CaseSpec& spec);
+  // The current state (fields must be refreshed) as the next frame, with
+  // the gas's fields (none when `gas` is empty).
+  void write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas = {});
   // Publishes a copy of the file as it is now (and the sidecar); writing goes on.
   void publish_copy();
   // Closes the file and renames it to `path`; writes the sidecar.
@@ -44,6 +46,7 @@ class FrameWriter {
   std::filesystem::path path_;
   std::unique_ptr<File> file_;
   std::vector<XdmfFrame> frames_;
+  XdmfGasGrid gas_grid_;  // cells 0 x 0 without a gas
   // Each elastic or rigid body's surface with its first storage index, for
   // the frames' surface flag and normal, built at the first frame (bodies
   // whose holes touch have none).
@@ -57,6 +60,8 @@ class FrameWriter {
 
 // The datasets of a frame besides `position`, as the XDMF sidecar lists them.
 const std::vector<XdmfField>& frame_fields();
+// A frame's gas datasets (cell-centred, row by row), named gas_ + the field.
+const std::vector<XdmfField>& gas_frame_fields();
 
 // The run id stored in a frames file. Throws InputError if it cannot be read.
 std::uint64_t frames_run_id(const std::filesystem::path& path);

@@ -131,9 +131,10 @@ void RunFolder::write_history(const SolverState& state, const CaseSpec& spec,
   last_history_step_ = state.step;
 }
 
-void RunFolder::write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d) {
+void RunFolder::write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                            const GasFrame& gas) {
   write_history(state, spec, d);
-  frames_.write(state, spec);
+  frames_.write(state, spec, gas);
   last_frame_step_ = state.step;
 }
 

@@ -43,7 +43,8 @@ class RunFolder {
 
   // A history.csv row (once per step), and a frame with its row.
   void write_history(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
-  void write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
+  void write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                   const GasFrame& gas = {});
   // Publishes copies of the outputs (unless published), then writes
   // checkpoint.h5 with the run.json segments so far, this one described by
   // `facts` (its figures are brought up to date here).

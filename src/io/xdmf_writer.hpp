@@ -21,10 +21,19 @@ struct XdmfFrame {
   double time = 0;    // s
 };
 
+// The gas's grid: nx x ny square cells of side h from (x0, y0); nx = 0: none.
+struct XdmfGasGrid {
+  int nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, h = 0;
+};
+
 // The document for `frames` in `h5_file` (a name relative to the XDMF file),
-// `particles` particles each, positions in the dataset `position` (N x 2).
+// `particles` particles each, positions in the dataset `position` (N x 2);
+// with a gas, a second time series of the gas's grid with its cell fields
+// (`gas_fields`, each ny x nx, shown under their names less "gas_").
 std::string xdmf_document(const std::string& h5_file, std::size_t particles,
                           const std::vector<XdmfFrame>& frames,
-                          const std::vector<XdmfField>& fields);
+                          const std::vector<XdmfField>& fields, const XdmfGasGrid& gas = {},
+                          const std::vector<XdmfField>& gas_fields = {});
 
 }  // namespace mpsolid

@@ -245,6 +245,32 @@ void GasCoupling::restore(const Saved& saved) {
   gas_time_ = clock[2];
 }
 
+GasFrame GasCoupling::frame() const {
+  const GasGrid<2>& g = gas_.grid();
+  GasFrame f;
+  f.nx = g.cells[0];
+  f.ny = g.cells[1];
+  f.x0 = g.origin[0];
+  f.y0 = g.origin[1];
+  f.h = g.h;
+  const std::size_t n = g.interior_cells();
+  f.density.reserve(n);
+  f.velocity.reserve(2 * n);
+  f.pressure.reserve(n);
+  f.solid.reserve(n);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int j = 0; j < f.ny; ++j)
+    for (int i = 0; i < f.nx; ++i) {
+      const bool solid = gas_.solid({i, j});
+      const GasPrimitive<2> w = gas_.primitive({i, j});
+      f.density.push_back(solid ? nan : w.rho);
+      f.velocity.insert(f.velocity.end(), {solid ? nan : w.u[0], solid ? nan : w.u[1]});
+      f.pressure.push_back(solid ? nan : w.p);
+      f.solid.push_back(solid ? 1 : 0);
+    }
+  return f;
+}
+
 GasFigures GasCoupling::figures(const SolverState& state) const {
   GasFigures f;
   f.gas_steps = gas_steps_;

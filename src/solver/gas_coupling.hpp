@@ -17,6 +17,7 @@
 
 #include "src/case/case_spec.hpp"
 #include "src/core/diagnostics.hpp"
+#include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/gas/gas_solver.hpp"
 
@@ -53,6 +54,8 @@ class GasCoupling {
   // The figures, with the coupling error from the gas loads' work in `state`.
   GasFigures figures(const SolverState& state) const;
   const GasSolver<2>& gas() const { return gas_; }
+  // The gas's fields now, for a frame.
+  GasFrame frame() const;
 
  private:
   // A coupled body's surface as the gas sees it: its nodes' weights and its

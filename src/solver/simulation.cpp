@@ -45,6 +45,8 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
 }
 
 Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 
 void Simulation::advance(std::int64_t steps) {
   set_flush_subnormals(spec_.flush_subnormals);  // the mode is process-wide: this case's choice
@@ -109,6 +111,10 @@ Diagnostics Simulation::current_diagnostics() {
 Diagnostics Simulation::diagnostics() {
   refresh_fields();
   return current_diagnostics();
+}
+
+GasFrame Simulation::gas_frame() const {
+  return gas_ ? gas_->frame() : GasFrame{};
 }
 
 void Simulation::remember_gas() {

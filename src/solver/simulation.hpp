@@ -10,6 +10,7 @@
 
 #include "src/case/case_spec.hpp"
 #include "src/core/diagnostics.hpp"
+#include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stability.hpp"
 #include "src/core/timers.hpp"
@@ -27,6 +28,8 @@ class Simulation {
   // the case steps over the ranks; without, on this process.
   explicit Simulation(const CaseSpec& spec, Followers* followers = nullptr);
   ~Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
 
   // Advances `steps` time steps (no output). Over ranks, the particles stay
   // on their ranks until the state is next read.
@@ -68,6 +71,8 @@ class Simulation {
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
   // The case's gas, or nullptr without a [gas] section.
   const GasCoupling* gas() const { return gas_.get(); }
+  // The gas's fields now (empty without a gas).
+  GasFrame gas_frame() const;
   // Whether the gas went unphysical in an advance (which then stopped at
   // the window where it did; check_stability reports it).
   bool gas_failed() const { return !gas_failure_.empty(); }

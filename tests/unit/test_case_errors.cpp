@@ -1018,5 +1018,97 @@ TEST(GoodCases, ResolvedTomlReadsBackWithUnusualNames) {
   }
 }
 
+// ---- [gas] -------------------------------------------------------------------
+
+// The base case in a shock tube: every body inside the grid.
+std::string gas_toml() {
+  return base_toml() + R"(
+[gas]
+cell = 0.002
+x = [-0.05, 0.11]
+y = [-0.04, 0.04]
+left = "inflow"
+
+[gas.initial]
+density = 1.2
+pressure = 101325.0
+
+[gas.shock]
+mach = 1.5
+x = -0.03
+
+[gas.probes.front]
+at = [-0.01, 0.0]
+)";
+}
+
+std::string gas_edit(const std::string& from, const std::string& to) {
+  return edit(gas_toml(), from, to);
+}
+
+TEST(CaseErrors, TheGasCaseIsValidAndReadsBackResolved) {
+  const CaseSpec spec = load_case_text(gas_toml(), "gas.toml");
+  ASSERT_TRUE(spec.gas.enabled);
+  EXPECT_EQ(spec.gas.bodies.size(), 3u);  // every body over the grid
+  EXPECT_EQ(spec.gas.reference_pressure, 101325.0);
+  EXPECT_EQ(spec.gas.edges[0][0], GasSpec::Edge::inflow);
+  const CaseSpec again = load_case_text(spec.resolved_toml, "resolved.toml");
+  // The same case but for the first line, which names the file it came from.
+  const auto body = [](const std::string& t) { return t.substr(t.find('\n')); };
+  EXPECT_EQ(body(again.resolved_toml), body(spec.resolved_toml));
+  EXPECT_EQ(again.gas.mach, 1.5);
+  ASSERT_EQ(again.gas.probes.size(), 1u);
+}
+
+TEST(CaseErrors, GasGridNeedsAWholeNumberOfCellsAndCellsNoCoarserThanTheThinnestBody) {
+  EXPECT_INPUT_ERROR(gas_edit("cell = 0.002", "cell = 0.0"), {"bad.toml", "gas.cell", "(0, inf)"});
+  EXPECT_INPUT_ERROR(gas_edit("x = [-0.05, 0.11]", "x = [-0.05, 0.1107]"),
+                     {"bad.toml", "gas.x", "whole number"});
+  EXPECT_INPUT_ERROR(gas_edit("y = [-0.04, 0.04]", "y = [0.04, -0.04]"),
+                     {"bad.toml", "gas.y", "y0 < y1"});
+  // The wall is 4 mm thin.
+  EXPECT_INPUT_ERROR(gas_edit("cell = 0.002", "cell = 0.005"),
+                     {"bad.toml", "gas.cell", "'wall'", "0.004"});
+  EXPECT_INPUT_ERROR(gas_edit("cell = 0.002", "cell = 0.002\ncfl = 1.5"),
+                     {"bad.toml", "gas.cfl", "(0, 1]"});
+  EXPECT_INPUT_ERROR(gas_edit("cell = 0.002", "cell = 0.002\ngamma = 1.0"),
+                     {"bad.toml", "gas.gamma", "(1, 10)"});
+  EXPECT_INPUT_ERROR(gas_edit("left = \"inflow\"", "left = \"open\""),
+                     {"bad.toml", "gas.left", "slip_wall, inflow, outflow"});
+  EXPECT_INPUT_ERROR(gas_edit("cell = 0.002", "cell = 0.002\ncolour = 1"),
+                     {"bad.toml", "gas", "colour"});
+}
+
+TEST(CaseErrors, GasStatesNeedPositiveDensityAndPressureAndAShockAMachNumberAboveOne) {
+  EXPECT_INPUT_ERROR(gas_edit("density = 1.2", "density = -1.2"),
+                     {"bad.toml", "gas.initial.density", "(0, inf)"});
+  EXPECT_INPUT_ERROR(gas_edit("pressure = 101325.0", "pressure = 0.0"),
+                     {"bad.toml", "gas.initial.pressure", "(0, inf)"});
+  EXPECT_INPUT_ERROR(gas_edit("mach = 1.5", "mach = 1.0"),
+                     {"bad.toml", "gas.shock.mach", "(1, 50)"});
+  EXPECT_INPUT_ERROR(gas_edit("x = -0.03", "x = -0.3"),
+                     {"bad.toml", "gas.shock.x", "inside the grid"});
+  EXPECT_INPUT_ERROR(gas_edit("pressure = 101325.0", "pressure = 101325.0\nvelocity = [10.0, 0.0]"),
+                     {"bad.toml", "gas.shock.mach", "at rest"});
+  // An inflow edge with neither a shock nor an inflow state.
+  EXPECT_INPUT_ERROR(gas_edit("[gas.shock]\nmach = 1.5\nx = -0.03\n", ""),
+                     {"bad.toml", "gas.left", "[gas.inflow]"});
+}
+
+TEST(CaseErrors, GasBodiesAndProbesMustBeInsideTheGrid) {
+  EXPECT_INPUT_ERROR(gas_edit("left = \"inflow\"", "left = \"inflow\"\nbodies = [\"nobody\"]"),
+                     {"bad.toml", "gas.bodies", "unknown body 'nobody'"});
+  EXPECT_INPUT_ERROR(gas_edit("x = [-0.05, 0.11]\ny = [-0.04, 0.04]",
+                              "x = [-0.05, 0.11]\ny = [-0.04, 0.04]\nbodies = [\"rod\", \"rod\"]"),
+                     {"bad.toml", "gas.bodies", "twice"});
+  EXPECT_INPUT_ERROR(gas_edit("at = [-0.01, 0.0]", "at = [-0.01, 0.5]"),
+                     {"bad.toml", "gas.probes.front.at", "outside the gas grid"});
+  // A grid upstream of every body, told to push the rod.
+  const std::string upstream =
+      edit(gas_edit("x = [-0.05, 0.11]", "x = [-0.05, -0.01]\nbodies = [\"rod\"]"),
+           "at = [-0.01, 0.0]", "at = [-0.02, 0.0]");
+  EXPECT_INPUT_ERROR(upstream, {"bad.toml", "gas.bodies", "'rod' lies outside the gas grid"});
+}
+
 }  // namespace
 }  // namespace mpsolid

@@ -112,7 +112,7 @@ TEST(ThreadParts, AnyCutAtAnyThreadCountGivesTheBitsOfOneThreadForEveryModel) {
 // nodes it hosts, the parts share them, and every part has the load's
 // running step (its factor, node positions and work) bit for bit.
 TEST(ThreadParts, APressuresBodyCutBetweenThreadsGivesTheBitsOfOneThread) {
-  for (const std::string& file : {"cases/disk_blast.toml", "cases/ring_pressure.toml"}) {
+  for (const std::string file : {"cases/disk_blast.toml", "cases/ring_pressure.toml"}) {
     SCOPED_TRACE(file);
     const CaseSpec spec = load_case(testing::source_path(file));
     const SolverState alone = stepped_state_alone(spec, 150);
