@@ -22,7 +22,7 @@ Progress::Progress(std::int64_t total_steps, double dt, bool enabled, int thread
       last_(start_),
       wait_at_last_(team_wait_seconds()) {}
 
-void Progress::update(std::int64_t step, int team) {
+void Progress::update(std::int64_t step, int team, std::int64_t gas_steps) {
   if (!enabled_) return;
   const auto now = Clock::now();
   if (start_step_ < 0) {
@@ -41,6 +41,10 @@ void Progress::update(std::int64_t step, int team) {
   std::fprintf(stderr, "\r  t = %.4g ms / %.4g ms  (%5.1f %%)  %.3g steps/s  ETA %.0f s",
                1e3 * static_cast<double>(step) * dt_, 1e3 * static_cast<double>(total_) * dt_,
                100.0 * static_cast<double>(step) / static_cast<double>(total_), rate, eta);
+  if (gas_steps > 0)
+    std::fprintf(stderr, "  gas steps %lld (%.3g solid steps each)",
+                 static_cast<long long>(gas_steps),
+                 static_cast<double>(step) / static_cast<double>(gas_steps));
   // Waiting threads: an imbalance, or cores shared with other work.
   if (team > 1) std::fprintf(stderr, "  threads waiting %3.0f %%", 100.0 * wait_share);
   if (team < threads_) std::fprintf(stderr, "  (%d of %d threads: faster here)", team, threads_);

@@ -1,5 +1,6 @@
 #pragma once
-// Progress line on a terminal (simulated time, steps/s, ETA and, with more
+// Progress line on a terminal (simulated time, steps/s, ETA, the gas's steps
+// beside the solid's and, with more
 // than one thread, the share of the threads' time spent waiting at the
 // step's barriers), redrawn at most twice a second; silent when stderr is
 // not a terminal (CI, pipes).
@@ -11,8 +12,9 @@ namespace mpsolid {
 class Progress {
  public:
   Progress(std::int64_t total_steps, double dt, bool enabled, int threads);
-  // `team`: the threads the last batch ran on (fewer than asked on a busy machine).
-  void update(std::int64_t step, int team);
+  // `team`: the threads the last batch ran on (fewer than asked on a busy
+  // machine); `gas_steps`: the gas's steps so far (-1 without a gas).
+  void update(std::int64_t step, int team, std::int64_t gas_steps = -1);
   void finish();  // ends the line
 
  private:

@@ -184,7 +184,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
       governor.record(
           steps, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
           team_wait_seconds() - waited);
-      progress.update(sim.step(), governor.threads());
+      progress.update(sim.step(), governor.threads(), sim.gas_steps());
     }
     Diagnostics d;
     const StabilityVerdict verdict = sim.check_stability(&d);

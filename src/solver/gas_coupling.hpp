@@ -37,6 +37,7 @@ class GasCoupling {
   // `state` (whose gas loads add_gas_loads made).
   GasCoupling(const CaseSpec& spec, const SolverState& state);
 
+  std::int64_t steps() const { return gas_steps_; }
   // The step at which the next window starts (the gas is due).
   std::int64_t next_exchange() const { return next_; }
   // At state.step == next_exchange(): the walls from the state, the gas

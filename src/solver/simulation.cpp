@@ -113,6 +113,10 @@ Diagnostics Simulation::diagnostics() {
   return current_diagnostics();
 }
 
+std::int64_t Simulation::gas_steps() const {
+  return gas_ ? gas_->steps() : -1;
+}
+
 GasFrame Simulation::gas_frame() const {
   return gas_ ? gas_->frame() : GasFrame{};
 }

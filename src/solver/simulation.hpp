@@ -71,6 +71,8 @@ class Simulation {
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
   // The case's gas, or nullptr without a [gas] section.
   const GasCoupling* gas() const { return gas_.get(); }
+  // The gas's steps so far (-1 without a gas).
+  std::int64_t gas_steps() const;
   // The gas's fields now (empty without a gas).
   GasFrame gas_frame() const;
   // Whether the gas went unphysical in an advance (which then stopped at
