@@ -42,9 +42,10 @@ StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
 }
 
 StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
-                              double tolerance) {
+                              double tolerance, double floor) {
   StabilityVerdict v;
-  const double scale = std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy)});
+  const double scale =
+      std::max({std::abs(d.external_work), peak_work, std::abs(initial_energy), floor});
   // PE: the strain energy and the contact energy; D: what damping took out.
   v.value = d.kinetic_energy + d.strain_energy + d.contact_energy + d.damping_loss -
             d.external_work - initial_energy;
@@ -57,6 +58,12 @@ StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, doubl
         v.value, tolerance, scale);
   }
   return v;
+}
+
+double energy_balance_floor(const ParticleStore& p, double particle_volume) {
+  double sum = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) sum += p.lambda[i] + 2 * p.mu[i];
+  return 0.5e-12 * sum * particle_volume;
 }
 
 double dilatational_wave_speed(const std::vector<Material>& materials) {

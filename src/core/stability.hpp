@@ -31,10 +31,16 @@ StabilityVerdict check_finite(const ParticleStore& p);
 // The fastest moving particle against the limit speed.
 StabilityVerdict check_speed(const ParticleStore& p, double limit_speed);
 
-// |KE + PE - W - E0| against tolerance * max(peak W, E0); the peak external
-// work so far, not the current W, which falls when the body pushes back.
+// |KE + PE - W - E0| against tolerance * max(peak W, E0, floor); the peak
+// external work so far, not the current W, which falls when the body pushes
+// back. `floor`: the energy below which the balance is round-off (a body at
+// rest before any load reaches it).
 StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, double peak_work,
-                              double tolerance);
+                              double tolerance, double floor = 0.0);
+
+// The energy floor of the balance: the strain energy of a uniform strain
+// of 1e-6 in every particle, sum over particles of (lambda + 2 mu) V 1e-12 / 2.
+double energy_balance_floor(const ParticleStore& p, double particle_volume);
 
 // Largest dilatational wave speed sqrt((lambda + 2 mu) / rho) of the case's materials.
 double dilatational_wave_speed(const std::vector<Material>& materials);

@@ -38,6 +38,7 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
+  energy_floor_ = energy_balance_floor(state_.particles, spec_.l0 * spec_.l0 * spec_.depth);
   if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
   stepper_ = make_stepper(spec_, state_, followers);
   const Diagnostics start = diagnostics();
@@ -190,8 +191,8 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   // k steps the balance is off by about 1/(2k) of the work even in an exact
   // run: the check waits until that is 20 times below the tolerance.
   if (static_cast<double>(state_.step) < 10.0 / spec_.stability.energy_tolerance) return speed;
-  StabilityVerdict energy =
-      check_energy(d, initial_energy_, state_.peak_work, spec_.stability.energy_tolerance);
+  StabilityVerdict energy = check_energy(d, initial_energy_, state_.peak_work,
+                                         spec_.stability.energy_tolerance, energy_floor_);
   energy.particle = speed.particle;  // no single culprit: name the fastest particle
   return energy;
 }

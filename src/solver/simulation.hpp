@@ -100,6 +100,7 @@ class Simulation {
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
+  double energy_floor_ = 0;  // the balance's round-off scale (energy_balance_floor)
 };
 
 }  // namespace mpsolid

@@ -99,6 +99,11 @@ TEST(Stability, EnergyBalance) {
   d.external_work = 0.0;  // free motion: measured against the initial energy
   EXPECT_TRUE(check_energy(d, 90.0, 0.0, 0.01).ok);
   EXPECT_FALSE(check_energy(d, 80.0, 0.0, 0.1).ok);
+  // A body at rest before any load: its round-off energy is below the floor.
+  Diagnostics rest;
+  rest.strain_energy = 3e-20;
+  EXPECT_FALSE(check_energy(rest, 1e-25, 0.0, 0.1).ok);
+  EXPECT_TRUE(check_energy(rest, 1e-25, 0.0, 0.1, 1e-5).ok);
 }
 
 }  // namespace
