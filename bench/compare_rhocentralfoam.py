@@ -693,7 +693,8 @@ def plot(path, ours, foam_sets):
                   label=f"rhoCentralFoam, maxCo {co:g}: time loop only")
         for r in rows:
             ax.annotate(f"{r['cells']}", (r["seconds"], r["l1_density"]),
-                        textcoords="offset points", xytext=(4, 2), fontsize=6.5, color=c)
+                        textcoords="offset points", xytext=(4, 2 if k % 2 == 0 else -8),
+                        fontsize=6.5, color=c)
     ax.set_xlabel("wall time on 1 core [s]")
     ax.set_ylabel(r"$L_1$ error of density, mean over cells")
     ax.set_title("Sod shock tube at t = 0.2 (point labels: cells)", fontsize=10)

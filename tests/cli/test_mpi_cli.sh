@@ -12,6 +12,8 @@
 #    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too;
 #  - a blast-wave load at 2 ranks, and resumed at 3 mid-wave, too;
+#  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
+#    during the shock's reflection, gives the serial bits;
 #  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
 #    resumes to the serial bits;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
@@ -252,6 +254,24 @@ else
   fail "bad input on a follower: exit $rc"
   sed 's/^/    /' "$TMP/thin.err" | head -n 4
 fi
+
+# The gas (the Giordano panel, coarse, the shock started 2 mm from the panel
+# so the panel is struck and bends within the run): 2 and 3 ranks, and a
+# 2-rank checkpoint written during the shock's reflection resumed at 3
+# ranks, give the serial bits (gas fields in every frame included).
+GAS=(cases/giordano_panel.toml --set gas.cell=0.001 --set gas.shock.x=-0.002
+  --set output.frame_interval=1e-5 --set output.checkpoint_interval=1e-5)
+"$BIN" run "${GAS[@]}" --set time.end=4e-5 --out "$TMP/gas_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the serial gas run failed"
+for ranks in 2 3; do
+  mpi "$ranks" "gas$ranks" run "${GAS[@]}" --set time.end=4e-5 --out "$TMP/gas$ranks" --threads 1
+  [[ $rc -eq 0 ]] && same "$ranks ranks, gas" "$TMP/gas$ranks" "$TMP/gas_serial" ||
+    fail "$ranks ranks, gas: exit $rc"
+done
+mpi 2 gas_half run "${GAS[@]}" --set time.end=2e-5 --out "$TMP/gas_half" --threads 1
+mpi 3 gas_resume resume "$TMP/gas_half" --set time.end=4e-5 --threads 1
+[[ $rc -eq 0 ]] && same "gas at 2 ranks, resumed at 3 in the reflection" "$TMP/gas_half" \
+  "$TMP/gas_serial" || fail "gas resumed at 3 ranks: exit $rc"
 
 if [[ $failures -gt 0 ]]; then
   echo "test_mpi_cli: $failures check(s) FAILED"
