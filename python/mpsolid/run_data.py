@@ -25,12 +25,23 @@ class Frame:
     access as a numpy array in id order (`id`, `kind`, `body`, `position`,
     `velocity` (N x 2), `rotation`, `angular_velocity`, `volumetric_strain`,
     `pressure`, `surface` (1 on a body's surface), `normal` (its outward unit
-    normal, N x 2))."""
+    normal, N x 2)); with a gas, `gas(field)` on the gas's grid."""
 
-    def __init__(self, path, name, step, time):
+    def __init__(self, path, name, step, time, gas_shape=None):
         self._path, self._name = path, name
         self.step, self.time = step, time
         self._fields = {}
+        self._gas_shape = gas_shape  # (ny, nx) with a gas
+
+    def gas(self, field):
+        """A gas field of this frame on its grid: `density`, `pressure`
+        (ny x nx, NaN inside a body), `velocity` (ny x nx x 2) or `solid`
+        (1 inside a body); row j is y = y0 + (j + 1/2) cell (Frames.gas_grid)."""
+        if self._gas_shape is None:
+            raise KeyError(f"{self._path}: the run has no gas")
+        values = self["gas_" + field]
+        ny, nx = self._gas_shape
+        return values.reshape((ny, nx, 2) if field == "velocity" else (ny, nx))
 
     def fields(self):
         """The field names of this frame."""
@@ -63,15 +74,21 @@ class Frame:
 
 class Frames:
     """The frames of frames.h5 as a sequence; nothing is read until a frame's
-    field is asked for. `body_names` and `kind_names` index `body` and `kind`."""
+    field is asked for. `body_names` and `kind_names` index `body` and `kind`;
+    `gas_grid` (None without a gas) is the gas's grid: nx, ny, x0, y0, cell."""
 
     def __init__(self, path):
         import h5py
         self._path = path
         with h5py.File(path, "r") as f:
             names = sorted(f["frames"].keys())
+            self.gas_grid = None
+            if "gas_nx" in f.attrs:
+                self.gas_grid = {k: f.attrs["gas_" + k].item()
+                                 for k in ("nx", "ny", "x0", "y0", "cell")}
+            shape = (self.gas_grid["ny"], self.gas_grid["nx"]) if self.gas_grid else None
             self._frames = [Frame(path, n, int(f["frames"][n].attrs["step"]),
-                                  float(f["frames"][n].attrs["time"])) for n in names]
+                                  float(f["frames"][n].attrs["time"]), shape) for n in names]
             self.body_names = [b.decode() for b in f["body_names"][()]]
             self.kind_names = [k.decode() for k in f["kind_names"][()]]
             self.attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}

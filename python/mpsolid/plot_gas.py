@@ -1,0 +1,132 @@
+"""Pictures of a run's gas (a case with [gas]): numerical schlieren and the
+probes' pressures.
+
+schlieren.png: at chosen times, the gas's density gradient magnitude in grey
+(dark where the density changes fast, as a shadowgraph shows shocks), with
+the bodies' particles drawn over it in dark red, one panel per time, in mm
+at equal aspect. The grey is Quirk's exponential scale, exp(-k |grad rho| /
+max |grad rho|) with k = 15, the maximum taken over every panel so the
+panels compare.
+
+gas_probes.png: each probe's pressure against time in ms, with measured
+points (a CSV of t in ms and p in kPa, a header row allowed) drawn over it.
+"""
+import csv
+import os
+
+import numpy as np
+
+from .run_data import open_run
+
+SCHLIEREN_K = 15.0
+
+
+def density_gradient(frame, cell):
+    """|grad rho| on the gas's grid (central differences, one-sided at the
+    edges and next to bodies; 0 inside a body)."""
+    rho = frame.gas("density")
+    solid = frame.gas("solid").astype(bool)
+    gy, gx = np.gradient(np.where(solid, np.nan, rho), cell)
+    g = np.hypot(gx, gy)
+    return np.where(np.isfinite(g), g, 0.0)
+
+
+def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
+    """schlieren.png of the run in `folder` at `times_ms` (default: six
+    frames evenly spread); returns the path written."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    run = open_run(folder)
+    frames = run.frames
+    if frames.gas_grid is None:
+        raise ValueError(f"{folder}: the run has no gas")
+    grid = frames.gas_grid
+    if times_ms is None:
+        picks = np.unique(np.linspace(0, len(frames) - 1, min(6, len(frames))).round().astype(int))
+        chosen = [frames[int(k)] for k in picks]
+    else:
+        chosen = [frames.at_time(t * 1e-3) for t in times_ms]
+    gradients = [density_gradient(f, grid["cell"]) for f in chosen]
+    top = max(float(g.max()) for g in gradients) or 1.0
+    x0, y0, h = grid["x0"], grid["y0"], grid["cell"]
+    extent = [1e3 * x0, 1e3 * (x0 + grid["nx"] * h), 1e3 * y0, 1e3 * (y0 + grid["ny"] * h)]
+    rows = (len(chosen) + columns - 1) // columns
+    width = 7.0 * columns
+    aspect = (extent[3] - extent[2]) / (extent[1] - extent[0])
+    fig, axes = plt.subplots(rows, columns, figsize=(width, rows * (7.0 * aspect + 0.6) + 0.4),
+                             squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        if k >= len(chosen):
+            ax.axis("off")
+            continue
+        frame = chosen[k]
+        shade = np.exp(-SCHLIEREN_K * gradients[k] / top)
+        ax.imshow(shade, origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1,
+                  interpolation="nearest")
+        xy = frame.position
+        moving = frame.kind != 0
+        ax.scatter(1e3 * xy[moving, 0], 1e3 * xy[moving, 1], s=0.5, c="#8b1a1a", linewidths=0)
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        ax.set_aspect("equal")
+        ax.set_title(f"t = {1e3 * frame.time:.3f} ms", fontsize=10)
+        ax.tick_params(labelsize=8)
+        if k % columns == 0:
+            ax.set_ylabel("y (mm)", fontsize=9)
+        if k >= (rows - 1) * columns:
+            ax.set_xlabel("x (mm)", fontsize=9)
+    case = run.case
+    fig.suptitle(f"{case.get('name', os.path.basename(folder))}: numerical schlieren "
+                 f"(|grad rho|, gas cell {1e3 * h:g} mm, l0 {1e3 * case.get('l0', 0):g} mm)",
+                 fontsize=11)
+    fig.tight_layout()
+    path = out or os.path.join(folder, "schlieren.png")
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
+def read_points(path):
+    """(t in ms, p in kPa) pairs of a CSV file, a header row allowed."""
+    t, p = [], []
+    with open(path) as f:
+        for row in csv.reader(f):
+            try:
+                t.append(float(row[0]))
+                p.append(float(row[1]))
+            except (ValueError, IndexError):
+                continue
+    return np.array(t), np.array(p)
+
+
+def probe_history(folder, out=None, measured=None, measured_label="experiment", dpi=150):
+    """gas_probes.png: each probe's pressure over time; `measured`: a CSV of
+    points drawn over it. Returns the path written."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    run = open_run(folder)
+    h = run.history_array
+    names = [n[len("gas."):-len(".p")] for n in h.dtype.names
+             if n.startswith("gas.") and n.endswith(".p")]
+    if not names:
+        raise ValueError(f"{folder}: the run has no gas probes")
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    for name in names:
+        ax.plot(1e3 * h["t"], 1e-3 * h[f"gas.{name}.p"], lw=1.4, label=f"mpsolid: {name}")
+    if measured:
+        t, p = read_points(measured)
+        ax.plot(t, p, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
+    ax.set_xlabel("t (ms)")
+    ax.set_ylabel("pressure (kPa)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=9, frameon=False)
+    ax.set_title(f"{run.case.get('name', '')}: gas pressure at the probes", fontsize=11)
+    fig.tight_layout()
+    path = out or os.path.join(folder, "gas_probes.png")
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
