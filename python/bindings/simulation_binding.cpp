@@ -15,6 +15,7 @@
 #include "python/bindings/case_handle.hpp"
 #include "python/bindings/threads.hpp"
 #include "src/core/parallel.hpp"
+#include "src/solver/gas_coupling.hpp"
 #include "src/solver/simulation.hpp"
 
 namespace py = pybind11;
@@ -102,6 +103,27 @@ py::dict diagnostics_dict(const Diagnostics& d) {
   out["damping_loss"] = d.damping_loss;      // 0 without [damping]
   out["contact_energy"] = d.contact_energy;  // 0 without [contact]
   out["contact_min_distance"] = d.contact_min_distance;
+  return out;
+}
+
+// The gas's figures (history.csv's gas columns), or None without a gas.
+py::object gas_dict(const Simulation& sim, const Diagnostics& d) {
+  if (!sim.gas()) return py::none();
+  const GasFigures& g = d.gas;
+  py::dict out;
+  out["steps"] = g.gas_steps;
+  out["time"] = g.gas_time;
+  out["mass"] = g.mass;
+  out["energy"] = g.energy;
+  out["inflow_energy"] = g.inflow_energy;
+  out["wall_work"] = g.wall_work;
+  out["solid_work"] = g.solid_work;
+  out["lost_energy"] = g.lost_energy;
+  out["coupling_error"] = g.coupling_error;
+  py::dict probes;
+  for (std::size_t k = 0; k < sim.spec().gas.probes.size(); ++k)
+    probes[py::str(sim.spec().gas.probes[k].name)] = py::make_tuple(g.probe_p[k], g.probe_rho[k]);
+  out["probes"] = probes;
   return out;
 }
 
@@ -212,9 +234,56 @@ void bind_simulation(py::module_& m) {
       .def(
           "diagnostics",
           [](SimulationHandle& h) {
-            return diagnostics_dict(h.with_solver([&] { return h.sim().diagnostics(); }));
+            const Diagnostics d = h.with_solver([&] { return h.sim().diagnostics(); });
+            py::dict out = diagnostics_dict(d);
+            out["gas"] = gas_dict(h.sim(), d);
+            return out;
           },
-          "Energies (J per depth), momenta and the largest speed of the current state.")
+          "Energies (J per depth), momenta and the largest speed of the current state; with a "
+          "gas, `gas`: its steps, mass, energy, exchanges and probes (p, rho).")
+      .def_property_readonly(
+          "gas_conserved",
+          [](py::object self) -> py::object {
+            const Simulation& sim = self.cast<SimulationHandle&>().sim();
+            if (!sim.gas()) return py::none();
+            const GasGrid<2>& g = sim.gas()->gas().grid();
+            const auto rows = static_cast<py::ssize_t>(g.extent(1));
+            const auto columns = static_cast<py::ssize_t>(g.extent(0));
+            py::dict out;
+            const char* names[] = {"rho", "rho_u", "rho_v", "E"};
+            for (int v = 0; v < GasSolver<2>::kVars; ++v) {
+              const std::vector<double>& q = sim.gas()->gas().conserved(v);
+              py::array a(py::dtype::of<double>(), {rows, columns},
+                          {static_cast<py::ssize_t>(sizeof(double) * columns),
+                           static_cast<py::ssize_t>(sizeof(double))},
+                          q.data(), self);
+              py::detail::array_proxy(a.ptr())->flags &=
+                  ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+              out[names[v]] = a;
+            }
+            return out;
+          },
+          "The gas's conserved variables (rho, rho_u, rho_v, E per cell volume) as read-only "
+          "views of the solver's arrays, rows along y, the grid's two ghost layers on every "
+          "side included (interior cell (i, j) at [j + 2, i + 2]); None without a gas.")
+      .def(
+          "gas_fields",
+          [](SimulationHandle& h) -> py::object {
+            if (!h.sim().gas()) return py::none();
+            const GasFrame f = h.with_solver([&] { return h.sim().gas_frame(); });
+            const auto ny = static_cast<py::ssize_t>(f.ny), nx = static_cast<py::ssize_t>(f.nx);
+            py::dict out;
+            out["density"] = py::array_t<double>({ny, nx}, f.density.data());
+            out["pressure"] = py::array_t<double>({ny, nx}, f.pressure.data());
+            out["velocity"] = py::array_t<double>({ny, nx, py::ssize_t{2}}, f.velocity.data());
+            out["solid"] = py::array_t<std::int8_t>({ny, nx}, f.solid.data());
+            out["x0"] = f.x0;
+            out["y0"] = f.y0;
+            out["cell"] = f.h;
+            return out;
+          },
+          "The gas's density, pressure, velocity (ny x nx, x fastest; NaN inside a body) and "
+          "solid flag now, as copies, with the grid's corner and cell; None without a gas.")
       .def(
           "check_stability",
           [](SimulationHandle& h) {

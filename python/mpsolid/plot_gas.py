@@ -10,11 +10,16 @@ panels compare.
 
 gas_probes.png: each probe's pressure against time in ms, with measured
 points (a CSV of t in ms and p in kPa, a header row allowed) drawn over it.
+
+The figures are made without pyplot (an interactive session's backend is
+left alone); not imported by `import mpsolid`.
 """
 import csv
 import os
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
 from .run_data import open_run
 
@@ -34,10 +39,6 @@ def density_gradient(frame, cell):
 def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
     """schlieren.png of the run in `folder` at `times_ms` (default: six
     frames evenly spread); returns the path written."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     run = open_run(folder)
     frames = run.frames
     if frames.gas_grid is None:
@@ -55,8 +56,8 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
     rows = (len(chosen) + columns - 1) // columns
     width = 7.0 * columns
     aspect = (extent[3] - extent[2]) / (extent[1] - extent[0])
-    fig, axes = plt.subplots(rows, columns, figsize=(width, rows * (7.0 * aspect + 0.6) + 0.4),
-                             squeeze=False)
+    fig = Figure(figsize=(width, rows * (7.0 * aspect + 0.6) + 0.4))
+    axes = np.array(fig.subplots(rows, columns, squeeze=False))
     for k, ax in enumerate(axes.flat):
         if k >= len(chosen):
             ax.axis("off")
@@ -83,8 +84,7 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
                  fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "schlieren.png")
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
+    FigureCanvasAgg(fig).print_png(path, dpi=dpi)
     return path
 
 
@@ -104,17 +104,14 @@ def read_points(path):
 def probe_history(folder, out=None, measured=None, measured_label="experiment", dpi=150):
     """gas_probes.png: each probe's pressure over time; `measured`: a CSV of
     points drawn over it. Returns the path written."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     run = open_run(folder)
     h = run.history_array
     names = [n[len("gas."):-len(".p")] for n in h.dtype.names
              if n.startswith("gas.") and n.endswith(".p")]
     if not names:
         raise ValueError(f"{folder}: the run has no gas probes")
-    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    fig = Figure(figsize=(7.5, 4.2))
+    ax = fig.subplots()
     for name in names:
         ax.plot(1e3 * h["t"], 1e-3 * h[f"gas.{name}.p"], lw=1.4, label=f"mpsolid: {name}")
     if measured:
@@ -127,6 +124,5 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
     ax.set_title(f"{run.case.get('name', '')}: gas pressure at the probes", fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "gas_probes.png")
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
+    FigureCanvasAgg(fig).print_png(path, dpi=dpi)
     return path

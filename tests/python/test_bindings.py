@@ -415,6 +415,51 @@ class Threads(unittest.TestCase):
             self.assertEqual(lines[3].split(), ["resumed", "0", str(int(final) + 500)])
 
 
+class Gas(TempDirTest):
+    """The gas's views and figures, and open_run's gas fields, against the
+    command line's run of the same case (the Giordano panel, coarse, the
+    shock started 2 mm from the panel)."""
+
+    SETS = {"gas.cell": 0.001, "gas.shock.x": -0.002, "time.end": 2e-5,
+            "output.frame_interval": 1e-5}
+
+    def case(self):
+        case = mpsolid.Case.load(str(ROOT / "cases" / "giordano_panel.toml"))
+        for key, value in self.SETS.items():
+            case = case.set(key, value)
+        return case
+
+    def test_views_fields_and_figures_match_the_command_line(self):
+        sim = mpsolid.Simulation(self.case(), threads=1)
+        self.assertIsNone(mpsolid.Simulation(coarse_case(), threads=1).gas_fields())
+        sim.run_to(2e-5)
+        q = sim.gas_conserved
+        self.assertEqual(q["rho"].shape, (65 + 4, 300 + 4))
+        self.assertFalse(q["rho"].flags.writeable)
+        fields = sim.gas_fields()
+        rho = fields["density"]
+        self.assertEqual(rho.shape, (65, 300))
+        gas_cells = fields["solid"] == 0
+        # The views hold the same gas: interior cells, ghosts stripped.
+        np.testing.assert_array_equal(q["rho"][2:-2, 2:-2][gas_cells], rho[gas_cells])
+        self.assertTrue(np.isnan(rho[fields["solid"] == 1]).all())
+        d = sim.diagnostics()["gas"]
+        self.assertGreater(d["steps"], 0)
+        self.assertIn("top_wall_10mm_upstream", d["probes"])
+        # The command line's last frame and history row are the same bits.
+        out = os.path.join(self.tmp, "gas")
+        args = [f"{k}={v}" for k, v in self.SETS.items()]
+        code, _, err = cli("run", str(ROOT / "cases" / "giordano_panel.toml"), "--out", out,
+                           "--threads", "1", *sum((["--set", a] for a in args), []))
+        self.assertEqual(code, 0, err)
+        run = mpsolid.open_run(out)
+        last = run.frames[-1]
+        np.testing.assert_array_equal(last.gas("density"), rho)
+        self.assertEqual(last.gas("velocity").shape, (65, 300, 2))
+        self.assertEqual(run.frames.gas_grid["nx"], 300)
+        self.assertEqual(run.history_array["gas.energy"][-1], d["energy"])
+
+
 class Version(unittest.TestCase):
     def test_version_is_the_command_lines(self):
         code, out, _ = cli("--version")
