@@ -18,9 +18,9 @@ import csv
 import os
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from .plot import save_png
 from .run_data import open_run
 
 SCHLIEREN_K = 15.0
@@ -84,7 +84,7 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
                  fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "schlieren.png")
-    FigureCanvasAgg(fig).print_png(path, dpi=dpi)
+    save_png(fig, path, dpi)
     return path
 
 
@@ -124,5 +124,5 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
     ax.set_title(f"{run.case.get('name', '')}: gas pressure at the probes", fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "gas_probes.png")
-    FigureCanvasAgg(fig).print_png(path, dpi=dpi)
+    save_png(fig, path, dpi)
     return path
