@@ -421,8 +421,9 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
                   const double f = was_fraction.empty() ? 1.0 : was_fraction[k];
                   for (int v = 0; v < kVars; ++v) q_[v][k] *= f;
                 });
-  // The neighbours of k through faces open in `faces` that are gas in both
-  // masks, in a fixed order.
+  // The neighbours of k through faces open in `faces` that were gas (or have
+  // been filled here) and are gas, in a fixed order.
+  std::vector<std::uint8_t> shut = was;
   const auto neighbours = [&](std::size_t k,
                               const std::array<std::vector<std::int32_t>, Dim>& faces) {
     std::vector<std::size_t> out;
@@ -430,15 +431,10 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
       const std::size_t s = grid_.stride(a);
       for (const std::size_t nb : {k - s, k + s}) {
         const std::size_t face = nb < k ? k : nb;
-        if (!was[nb] && !solid_[nb] && (faces[a].empty() || faces[a][face] < 0)) out.push_back(nb);
+        if (!shut[nb] && !solid_[nb] && (faces[a].empty() || faces[a][face] < 0)) out.push_back(nb);
       }
     }
     return out;
-  };
-  const auto where = [&](const std::array<int, Dim>& c) {
-    std::string text;
-    for (int d = 0; d < Dim; ++d) text += fmt::format("{}{}", d ? ", " : "", c[d]);
-    return text;
   };
   // A covered cell's gas goes to the neighbours it was open to, in equal
   // shares: the gas keeps its mass, momentum and energy, as a piston keeps
@@ -461,25 +457,38 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
                 });
   // An uncovered cell and the neighbours it opens to share their gas in
   // proportion to their new volumes: the gas fills the volume the wall
-  // left, keeping its mass, momentum and energy.
+  // left, keeping its mass, momentum and energy. A cell filled so is gas
+  // for the uncovered cells after it (passes until none is filled); one
+  // that no gas reaches (a gap opening between two bodies in contact) stays
+  // out of the gas, solid, until a later set of walls lets gas in.
+  std::vector<std::size_t> pending;
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
-                [&](const std::array<int, Dim>& c, std::size_t k) {
-                  if (!was[k] || solid_[k]) return;
-                  const std::vector<std::size_t> from = neighbours(k, closed_);
-                  if (from.empty())
-                    throw GasFailure(fmt::format(
-                        "cell ({}), uncovered by a wall, has no gas next to it: a wall moved "
-                        "more than a cell in one gas step",
-                        where(c)));
-                  double total = fraction_[k];
-                  for (const std::size_t nb : from) total += fraction_[nb];
-                  for (int v = 0; v < kVars; ++v) {
-                    double sum = 0;
-                    for (const std::size_t nb : from) sum += q_[v][nb];
-                    q_[v][k] = sum * (fraction_[k] / total);
-                    for (const std::size_t nb : from) q_[v][nb] = sum * (fraction_[nb] / total);
-                  }
+                [&](const std::array<int, Dim>&, std::size_t k) {
+                  if (was[k] && !solid_[k]) pending.push_back(k);
                 });
+  for (bool filled = true; filled && !pending.empty();) {
+    filled = false;
+    std::vector<std::size_t> unreached;
+    for (const std::size_t k : pending) {
+      const std::vector<std::size_t> from = neighbours(k, closed_);
+      if (from.empty()) {
+        unreached.push_back(k);
+        continue;
+      }
+      double total = fraction_[k];
+      for (const std::size_t nb : from) total += fraction_[nb];
+      for (int v = 0; v < kVars; ++v) {
+        double sum = 0;
+        for (const std::size_t nb : from) sum += q_[v][nb];
+        q_[v][k] = sum * (fraction_[k] / total);
+        for (const std::size_t nb : from) q_[v][nb] = sum * (fraction_[nb] / total);
+      }
+      shut[k] = 0;
+      filled = true;
+    }
+    pending.swap(unreached);
+  }
+  for (const std::size_t k : pending) solid_[k] = 1;
   // Back to states: each gas cell's content over its new volume.
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
                 [&](const std::array<int, Dim>&, std::size_t k) {

@@ -255,6 +255,34 @@ TEST(GasWalls, APistonPushedInOrDrawnOutGivesTheExactPressureAndTheBalancesClose
     }
 }
 
+TEST(GasWalls, AGapOpeningBetweenTwoBodiesStaysOutOfTheGasUntilGasReachesIt) {
+  // Two blocks through the whole height touching at x = 0.1, gas beyond
+  // x = 0.3. The left block steps back 15 mm: the cells in the gap have no
+  // gas next to them and stay solid; then the right block steps back too
+  // and the gas fills the gap.
+  GasSolver<2> gas = uniform_box(40, 5, 0.01, {1.2, {0, 0}, 1e5});
+  const auto walls = [&](double left_face, double right_end) {
+    return join(rectangle(-1, left_face, -1, 2), rectangle(0.1, right_end, -1, 2));
+  };
+  gas.set_walls(walls(0.1, 0.3));
+  const double mass = gas.totals().mass;
+  gas.set_walls(walls(0.085, 0.3));
+  for (int j = 0; j < 5; ++j) EXPECT_TRUE(gas.solid({9, j}));
+  EXPECT_EQ(gas.totals().mass, mass);
+  gas.advance(gas.stable_dt(0.8));
+  EXPECT_NEAR(gas.totals().mass, mass, 1e-13 * mass);
+  // The right block now starts at 0.115: its old cells from 0.1 to 0.115
+  // and the gap join... still closed off from the gas beyond x = 0.3.
+  gas.set_walls(join(rectangle(-1, 0.085, -1, 2), rectangle(0.115, 0.3, -1, 2)));
+  for (int j = 0; j < 5; ++j) EXPECT_TRUE(gas.solid({9, j}) && gas.solid({10, j}));
+  // Gone: the gas beyond x = 0.3 reaches the gap through the cells the
+  // right block leaves, which the gas fills in turn.
+  gas.set_walls(rectangle(-1, 0.085, -1, 2));
+  for (int j = 0; j < 5; ++j)
+    for (int i = 9; i < 40; ++i) EXPECT_FALSE(gas.solid({i, j})) << i << ", " << j;
+  EXPECT_NEAR(gas.totals().mass, mass, 1e-13 * mass);
+}
+
 TEST(GasWalls, MovingWallsGiveTheSameBitsAt1To4Threads) {
   const int threads = thread_count();
   std::vector<std::vector<double>> first;
