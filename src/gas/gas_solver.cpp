@@ -359,7 +359,10 @@ void GasSolver<Dim>::set_walls(const std::vector<GasWallSegment>& walls) require
       std::array<double, 2> n{dy / length, -dx / length};
       if (n[a] < 0) n = {-n[0], -n[1]};
       const double lo = std::min(from, to), hi = std::max(from, to);
-      const double first = std::ceil((lo - grid_.origin[across]) / h - 0.5);
+      // From a line before the first the division could round past: the
+      // comparisons with lo and hi below decide, exactly as for the
+      // segment that shares this end.
+      const double first = std::floor((lo - grid_.origin[across]) / h - 0.5);
       for (int line = static_cast<int>(std::clamp(first, 0.0, double(grid_.cells[across])));
            line < grid_.cells[across]; ++line) {
         const double at = grid_.origin[across] + (line + 0.5) * h;

@@ -108,6 +108,23 @@ TEST(GasWalls, SolidCellsAreTheCellsInsideAnOddNumberOfOutlines) {
   EXPECT_GT(solid, 150);
 }
 
+TEST(GasWalls, OutlinesWithVerticesOnTheCentreLinesAreCrossedOnce) {
+  // A body's surface has a node at every boundary site, (k + 1/2) l0: with
+  // the cell a multiple of l0 they fall on the lines through the cell
+  // centres, where the division by the cell size can round either way.
+  for (const double h : {0.0025, 0.001, 0.0005, 0.003}) {
+    GasSolver<2> gas = uniform_box(40, 8, h, {1.2, {0, 0}, 1e5});
+    std::vector<std::array<double, 2>> corners;
+    const double x0 = 10 * h, x1 = 18 * h;
+    for (int k = -2; k <= 10; ++k) corners.push_back({x1, (k + 0.5) * h});  // up the right face
+    for (int k = 10; k >= -2; --k) corners.push_back({x0, (k + 0.5) * h});  // down the left face
+    gas.set_walls(outline(corners));
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 40; ++i)
+        EXPECT_EQ(gas.solid({i, j}), i >= 10 && i < 18) << "h " << h << ", cell " << i << ", " << j;
+  }
+}
+
 TEST(GasWalls, GasAtRestRoundStillWallsStaysAtRestToTheBitAndPushesNoNetForce) {
   const GasPrimitive<2> air{1.2, {0, 0}, 101325};
   GasSolver<2> gas = uniform_box(50, 40, 0.002, air);

@@ -5,13 +5,22 @@
 // piston's velocity follows m dv/dt = p A exactly (integrated here by RK4).
 // The run couples the gas solver to a rigid body of particles through the
 // body's surface; docs/gas.md has the figures.
+//
+// And a piston held between two gas columns (the gas is its spring),
+// closed tubes of lengths L1 and L2, set moving slowly: it oscillates at
+// the lowest root of the acoustic frequency equation
+// m omega^2 = rho0 c0 omega (cot(omega L1 / c0) + cot(omega L2 / c0)) per
+// unit area, the columns' inertia included (the lumped spring
+// rho0 c0^2 (1/L1 + 1/L2) alone is 4 % off here).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "src/core/parallel.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/gas_coupling.hpp"
 #include "src/solver/simulation.hpp"
@@ -102,6 +111,84 @@ TEST(IdealGun, APistonPushedByAGasColumnFollowsLagrangesExactVelocity) {
     EXPECT_LT(std::abs(imbalance), 0.005);
     EXPECT_LT(std::abs(gas_balance), 1e-12);
   }
+}
+
+// The lowest root of the frequency equation (bisection below the columns'
+// first modes).
+double column_frequency(double mass_per_area, double l1, double l2) {
+  const double c0 = std::sqrt(kGamma * 101325.0 / 1.2), rho0 = 1.2;
+  const auto f = [&](double w) {
+    return mass_per_area * w * w -
+           rho0 * c0 * w * (1 / std::tan(w * l1 / c0) + 1 / std::tan(w * l2 / c0));
+  };
+  double lo = 1e-6, hi = 0.999 * M_PI * c0 / std::max(l1, l2);
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(GasSpring, APistonBetweenTwoGasColumnsOscillatesAtTheirFrequencyEquationsRoot) {
+  const double l1 = 0.3, l2 = 0.2, thick = 0.02, height = 0.02, tube = 0.01, rho_s = 62.5;
+  const std::string text =
+      fmt::format(R"(name = "gas_spring"
+model = "finite_strain"
+l0 = 0.0025
+[materials.heavy]
+E = 1e9
+nu = 0.3
+rho = {rho}
+[bodies.piston]
+kind = "rigid"
+material = "heavy"
+x = [{x0}, {x1}]
+y = [-0.005, 0.015]
+velocity = [1.0, 0.0]
+[time]
+dt = 2e-6
+end = 0.03
+[output]
+frame_interval = 0.03
+history_interval = 1e-4
+[gas]
+cell = 0.0025
+x = [0.0, {end}]
+y = [0.0, {tube}]
+[gas.initial]
+density = 1.2
+pressure = 101325.0
+)",
+                  fmt::arg("rho", rho_s), fmt::arg("x0", l1), fmt::arg("x1", l1 + thick),
+                  fmt::arg("end", l1 + thick + l2), fmt::arg("tube", tube));
+  // One thread: a few hundred cells and 64 particles, a window every few steps.
+  const int threads = thread_count();
+  set_thread_count(1);
+  Simulation sim(load_case_text(text, "gas_spring.toml"));
+  // The piston's displacement's downward zero crossings, by linear
+  // interpolation between rows.
+  std::vector<double> crossings;
+  double last_x = 0, last_t = 0;
+  while (sim.step() < sim.spec().step_count()) {
+    sim.advance(50);
+    const double x = sim.state().rigid_bodies.at(0).xg - sim.state().rigid_bodies.at(0).xg0;
+    const double t = sim.time();
+    if (last_x > 0 && x <= 0) crossings.push_back(last_t + (t - last_t) * last_x / (last_x - x));
+    last_x = x;
+    last_t = t;
+  }
+  set_thread_count(threads);
+  ASSERT_GE(crossings.size(), 2u);
+  const double period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  const double mass_per_area = rho_s * thick * height / tube;
+  const double exact = 2 * M_PI / column_frequency(mass_per_area, l1, l2);
+  const double lumped = 2 * M_PI / std::sqrt(kGamma * 101325.0 * (1 / l1 + 1 / l2) / mass_per_area);
+  std::printf(
+      "gas spring: period %.5f ms over %zu periods (frequency equation %.5f ms, lumped "
+      "spring %.5f ms): %+.3f %%\n",
+      1e3 * period, crossings.size() - 1, 1e3 * exact, 1e3 * lumped, 100 * (period / exact - 1));
+  EXPECT_NEAR(period / exact, 1.0, 0.005);
+  EXPECT_GT(std::abs(lumped / exact - 1), 0.02);  // the columns' inertia matters here
 }
 
 }  // namespace
