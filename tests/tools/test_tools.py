@@ -22,6 +22,9 @@
   every time panel with its criterion and its last frame as the last good
   state; a ring under internal pressure drawn with its two outlines and
   arrows on its inner surface, whose frames' normals point into the hole;
+- a gas's grid in frames.xdmf (a second temporal collection of cell
+  fields on a 2DCoRectMesh, every dataset present with its count) and
+  tools/plot_gas.py's schlieren.png and gas_probes.png;
 - tools/plot.py is an executable (#!/usr/bin/python3) and, under a Python
   without h5py or matplotlib, exits 2 with one line naming the package and
   /usr/bin/python3, no traceback.
@@ -45,6 +48,7 @@ PLOT = os.path.join(ROOT, "tools", "plot.py")
 CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
 CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 CASE_RING = os.path.join(ROOT, "cases", "ring_pressure.toml")
+CASE_GAS = os.path.join(ROOT, "cases", "giordano_panel.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure", "surface", "normal"}
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -391,6 +395,51 @@ def check_shapes(folder):
           f"smallest cosine {outward.min():.3f}")
 
 
+def check_gas(folder):
+    """The gas's grid in frames.xdmf (a second temporal collection, a
+    2DCoRectMesh of the gas's nodes with its cell fields, each dataset in
+    frames.h5 with the count it states) and tools/plot_gas.py's pictures."""
+    root = ET.parse(os.path.join(folder, "frames.xdmf")).getroot()
+    series = root.findall("Domain/Grid")
+    check(len(series) == 2 and series[1].get("Name") == "gas",
+          "frames.xdmf holds the particles' and the gas's time series")
+    if len(series) != 2:
+        return
+    bad = []
+    with h5py.File(os.path.join(folder, "frames.h5"), "r") as f:
+        nx, ny = int(f.attrs["gas_nx"]), int(f.attrs["gas_ny"])
+        grids = series[1].findall("Grid")
+        check(len(grids) == len(f["frames"]), "the gas's series lists every frame")
+        for grid in grids:
+            topology = grid.find("Topology")
+            if (topology.get("TopologyType") != "2DCoRectMesh"
+                    or topology.get("Dimensions") != f"{ny + 1} {nx + 1}"):
+                bad.append(f"topology {topology.attrib}")
+            names = {a.get("Name") for a in grid.findall("Attribute")}
+            if names != {"density", "velocity", "pressure", "solid"}:
+                bad.append(f"attributes {sorted(names)}")
+            for a in grid.findall("Attribute"):
+                item = a.find("DataItem")
+                dataset = item.text.strip().partition(":")[2]
+                count = int(np.prod([int(d) for d in item.get("Dimensions").split()]))
+                if a.get("Center") != "Cell" or dataset not in f or f[dataset].size != count:
+                    bad.append(f"{dataset}: {count} values stated")
+                elif count != nx * ny * (2 if a.get("Name") == "velocity" else 1):
+                    bad.append(f"{dataset}: {count} values for {nx} x {ny} cells")
+    check(not bad, "every gas dataset frames.xdmf references exists with its count", "; ".join(bad[:5]))
+    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools", "plot_gas.py"), folder,
+                             "--times", "0.01", "0.02"], capture_output=True, text=True, timeout=300)
+    check(result.returncode == 0, "tools/plot_gas.py runs", result.stderr[-300:])
+    for name, least in (("schlieren.png", 1500), ("gas_probes.png", 800)):
+        size = png_size(os.path.join(folder, name))
+        check(size is not None and size[0] >= least, f"{name} is a PNG at least {least} px wide",
+              str(size))
+    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools", "plot_gas.py"),
+                             os.path.join(folder, "nowhere")], capture_output=True, text=True)
+    check(result.returncode == 2 and "nowhere" in result.stderr,
+          "tools/plot_gas.py on a missing folder: exit 2 naming it")
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -418,6 +467,11 @@ def main():
                              case=CASE_RING, short=False) == 0,
                  "a short run of the ring under internal pressure"):
             check_shapes(ring)
+        gas = os.path.join(tmp, "gas")
+        if check(run_mpsolid(binary, gas, "gas.cell=0.001", "gas.shock.x=-0.002", "time.end=2e-5",
+                             "output.frame_interval=1e-5", case=CASE_GAS, short=False) == 0,
+                 "a short run of the Giordano panel in its gas"):
+            check_gas(gas)
         blowup = os.path.join(tmp, "blowup")
         if check(run_mpsolid(binary, blowup, "model=paper", "time.end=0.001", case=CASE_55KN,
                              short=False, expect=3) == 3,

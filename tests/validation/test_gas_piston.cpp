@@ -179,7 +179,8 @@ pressure = 101325.0
   }
   set_thread_count(threads);
   ASSERT_GE(crossings.size(), 2u);
-  const double period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  const double period =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   const double mass_per_area = rho_s * thick * height / tube;
   const double exact = 2 * M_PI / column_frequency(mass_per_area, l1, l2);
   const double lumped = 2 * M_PI / std::sqrt(kGamma * 101325.0 * (1 / l1 + 1 / l2) / mass_per_area);
