@@ -3,13 +3,16 @@
 DIR/gas_probes.png.
 
     tools/plot_gas.py DIR [--times MS ...] [--columns C] [--measured FILE.csv]
-                          [--measured-label TEXT] [--dpi D]
+                          [--measured-label TEXT] [--displacement COLUMN]
+                          [--measured-displacement FILE.csv] [--dpi D]
 
 schlieren.png: numerical schlieren (the density gradient's magnitude in grey,
 dark at shocks) with the bodies' particles drawn over it, at the frames
 nearest --times (ms; default six frames evenly spread). gas_probes.png: each
 gas probe's pressure over time, with --measured points (t in ms, p in kPa)
-drawn over it.
+drawn over it. With --displacement COLUMN (a history.csv column, e.g.
+panel.xmax), displacement.png: its change since t = 0 in mm, with
+--measured-displacement points (t in ms, mm) drawn over it.
 
 The drawing is the package's mpsolid.plot_gas (taken from the source tree: no
 build needed). Needs numpy, h5py and matplotlib (/usr/bin/python3 on
@@ -31,6 +34,8 @@ def main():
     parser.add_argument("--columns", type=int, default=2)
     parser.add_argument("--measured", help="CSV of t (ms), p (kPa)")
     parser.add_argument("--measured-label", default="experiment")
+    parser.add_argument("--displacement", help="a history.csv column, e.g. panel.xmax")
+    parser.add_argument("--measured-displacement", help="CSV of t (ms), displacement (mm)")
     parser.add_argument("--dpi", type=int, default=150)
     args = parser.parse_args()
     if not os.path.isdir(args.folder):
@@ -42,6 +47,10 @@ def main():
         print(plot_gas.schlieren(args.folder, args.times, columns=args.columns, dpi=args.dpi))
         print(plot_gas.probe_history(args.folder, measured=args.measured,
                                      measured_label=args.measured_label, dpi=args.dpi))
+        if args.displacement:
+            print(plot_gas.displacement_history(args.folder, args.displacement,
+                                                measured=args.measured_displacement,
+                                                measured_label=args.measured_label, dpi=args.dpi))
     except (ImportError, FileNotFoundError, ValueError, KeyError) as e:
         print(f"plot_gas: {e}", file=sys.stderr)
         return 2

@@ -11,6 +11,10 @@ panels compare.
 gas_probes.png: each probe's pressure against time in ms, with measured
 points (a CSV of t in ms and p in kPa, a header row allowed) drawn over it.
 
+displacement.png: a history.csv column's change since t = 0 (a body's
+extent: `panel.xmax`, the tip of a panel bending to +x) in mm against time
+in ms, with measured points (t in ms, mm) drawn over it.
+
 The figures are made without pyplot (an interactive session's backend is
 left alone); not imported by `import mpsolid`.
 """
@@ -89,10 +93,12 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
 
 
 def read_points(path):
-    """(t in ms, p in kPa) pairs of a CSV file, a header row allowed."""
+    """(t, value) pairs of a CSV file; header and # comment rows allowed."""
     t, p = [], []
     with open(path) as f:
         for row in csv.reader(f):
+            if row and row[0].lstrip().startswith("#"):
+                continue
             try:
                 t.append(float(row[0]))
                 p.append(float(row[1]))
@@ -124,5 +130,34 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
     ax.set_title(f"{run.case.get('name', '')}: gas pressure at the probes", fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "gas_probes.png")
+    save_png(fig, path, dpi)
+    return path
+
+
+def displacement_history(folder, column, out=None, measured=None, measured_label="experiment",
+                         dpi=150):
+    """displacement.png: history.csv's `column` less its first value, in mm,
+    against time in ms; `measured`: a CSV of points (t in ms, mm) drawn over
+    it. Returns the path written."""
+    run = open_run(folder)
+    h = run.history_array
+    if column not in h.dtype.names:
+        raise KeyError(f"{folder}: history.csv has no column '{column}'")
+    fig = Figure(figsize=(7.5, 4.2))
+    ax = fig.subplots()
+    ax.plot(1e3 * h["t"], 1e3 * (h[column] - h[column][0]), lw=1.4, label=f"mpsolid: {column}")
+    if measured:
+        t, v = read_points(measured)
+        ax.plot(t, v, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
+    ax.axhline(0, color="0.6", lw=0.6)
+    ax.set_xlabel("t (ms)")
+    ax.set_ylabel("displacement (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=9, frameon=False)
+    case = run.case
+    ax.set_title(f"{case.get('name', '')}: {column} (l0 {1e3 * case.get('l0', 0):g} mm, gas cell "
+                 f"{1e3 * case.get('gas', {}).get('cell', 0):g} mm)", fontsize=11)
+    fig.tight_layout()
+    path = out or os.path.join(folder, "displacement.png")
     save_png(fig, path, dpi)
     return path
