@@ -257,8 +257,7 @@ void bind_simulation(py::module_& m) {
                           {static_cast<py::ssize_t>(sizeof(double) * columns),
                            static_cast<py::ssize_t>(sizeof(double))},
                           q.data(), self);
-              py::detail::array_proxy(a.ptr())->flags &=
-                  ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+              py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
               out[names[v]] = a;
             }
             return out;

@@ -13,18 +13,8 @@ namespace mpsolid {
 template <int Dim>
 GasConserved<Dim> hllc_flux(const GasPrimitive<Dim>& l, const GasPrimitive<Dim>& r, double gamma,
                             int axis) {
-  // Each side's conserved state and Euler flux, computed once (the same
-  // operations as to_conserved and euler_flux).
+  // Each side's conserved state, computed once.
   const GasConserved<Dim> ql = to_conserved(l, gamma), qr = to_conserved(r, gamma);
-  const auto flux_of = [&](const GasPrimitive<Dim>& w, const GasConserved<Dim>& q) {
-    const double un = w.u[axis];
-    GasConserved<Dim> f;
-    f.rho = q.rho * un;
-    for (int d = 0; d < Dim; ++d) f.m[d] = q.m[d] * un;
-    f.m[axis] += w.p;
-    f.E = (q.E + w.p) * un;
-    return f;
-  };
   const double cl = sound_speed(l.rho, l.p, gamma), cr = sound_speed(r.rho, r.p, gamma);
   const double ul = l.u[axis], ur = r.u[axis];
   // Roe averages of the normal velocity and the sound speed.
@@ -41,14 +31,14 @@ GasConserved<Dim> hllc_flux(const GasPrimitive<Dim>& l, const GasPrimitive<Dim>&
   const double c_roe = std::sqrt(std::max((gamma - 1) * (h_roe - 0.5 * q2_roe), 0.0));
   const double s_l = std::min(ul - cl, u_roe - c_roe);
   const double s_r = std::max(ur + cr, u_roe + c_roe);
-  if (s_l >= 0) return flux_of(l, ql);
-  if (s_r <= 0) return flux_of(r, qr);
+  if (s_l >= 0) return euler_flux(l, ql, axis);
+  if (s_r <= 0) return euler_flux(r, qr, axis);
   const double ml = l.rho * (s_l - ul), mr = r.rho * (s_r - ur);
   const double s_star = (r.p - l.p + ml * ul - mr * ur) / (ml - mr);
   // The star state on the side K and its flux F_K + S_K (U*_K - U_K).
   const auto star_flux = [&](const GasPrimitive<Dim>& w, const GasConserved<Dim>& q, double s,
                              double mass) {
-    GasConserved<Dim> f = flux_of(w, q);
+    GasConserved<Dim> f = euler_flux(w, q, axis);
     const double factor = mass / (s - s_star);  // rho_K (S_K - u_K) / (S_K - S*)
     const double un = w.u[axis];
     GasConserved<Dim> star;

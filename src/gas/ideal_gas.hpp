@@ -56,17 +56,22 @@ inline double sound_speed(double rho, double p, double gamma) {
   return std::sqrt(gamma * p / rho);
 }
 
-// The Euler flux of state w through a face whose normal is +axis.
+// The Euler flux through a face whose normal is +axis of state w, whose
+// conserved form is q (to_conserved(w)).
 template <int Dim>
-GasConserved<Dim> euler_flux(const GasPrimitive<Dim>& w, double gamma, int axis) {
+GasConserved<Dim> euler_flux(const GasPrimitive<Dim>& w, const GasConserved<Dim>& q, int axis) {
   const double un = w.u[axis];
-  const GasConserved<Dim> q = to_conserved(w, gamma);
   GasConserved<Dim> f;
   f.rho = q.rho * un;
   for (int d = 0; d < Dim; ++d) f.m[d] = q.m[d] * un;
   f.m[axis] += w.p;
   f.E = (q.E + w.p) * un;
   return f;
+}
+
+template <int Dim>
+GasConserved<Dim> euler_flux(const GasPrimitive<Dim>& w, double gamma, int axis) {
+  return euler_flux(w, to_conserved(w, gamma), axis);
 }
 
 }  // namespace mpsolid
