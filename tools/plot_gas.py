@@ -51,7 +51,8 @@ def main():
             print(plot_gas.displacement_history(args.folder, args.displacement,
                                                 measured=args.measured_displacement,
                                                 measured_label=args.measured_label, dpi=args.dpi))
-    except (ImportError, FileNotFoundError, ValueError, KeyError) as e:
+    except (ImportError, FileNotFoundError, ValueError, KeyError,
+            mpsolid_module("plot").PlotError) as e:
         print(f"plot_gas: {e}", file=sys.stderr)
         return 2
     return 0

@@ -114,11 +114,12 @@ def read_frames(folder, limit, field):
     return frames, stored.body_names, l0, len(stored)
 
 
-def read_reference(path):
-    """(t, x) arrays from a CSV of t, x (s, m); a header row and # comments
-    allowed. A user's file, not a run's: read here."""
+def read_reference(path, option="--reference", units="t, x (seconds, metres)"):
+    """(t, x) arrays from a CSV of two columns (`units`: t, x in s, m for
+    --reference); a header row and # comments allowed. A user's file, not a
+    run's: read here; errors name `option`."""
     if not os.path.isfile(path):
-        raise PlotError(f"--reference {path}: no such file")
+        raise PlotError(f"{option} {path}: no such file")
     t, x = [], []
     with open(path, newline="") as f:
         for number_, row in enumerate(csv.reader(f), start=1):
@@ -129,10 +130,10 @@ def read_reference(path):
                 x.append(float(row[1]))
             except (ValueError, IndexError):
                 if t:   # only the first row may be a header
-                    raise PlotError(f"--reference {path}: line {number_} is not two numbers "
-                                    f"t, x: {row}") from None
+                    raise PlotError(f"{option} {path}: line {number_} is not two numbers "
+                                    f"{units}: {row}") from None
     if not t:
-        raise PlotError(f"--reference {path}: no rows of t, x (seconds, metres)")
+        raise PlotError(f"{option} {path}: no rows of {units}")
     return np.array(t), np.array(x)
 
 

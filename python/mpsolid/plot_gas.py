@@ -18,13 +18,12 @@ in ms, with measured points (t in ms, mm) drawn over it.
 The figures are made without pyplot (an interactive session's backend is
 left alone); not imported by `import mpsolid`.
 """
-import csv
 import os
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from .plot import save_png
+from .plot import read_reference, save_png
 from .run_data import open_run
 
 SCHLIEREN_K = 15.0
@@ -92,21 +91,6 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
     return path
 
 
-def read_points(path):
-    """(t, value) pairs of a CSV file; header and # comment rows allowed."""
-    t, p = [], []
-    with open(path) as f:
-        for row in csv.reader(f):
-            if row and row[0].lstrip().startswith("#"):
-                continue
-            try:
-                t.append(float(row[0]))
-                p.append(float(row[1]))
-            except (ValueError, IndexError):
-                continue
-    return np.array(t), np.array(p)
-
-
 def probe_history(folder, out=None, measured=None, measured_label="experiment", dpi=150):
     """gas_probes.png: each probe's pressure over time; `measured`: a CSV of
     points drawn over it. Returns the path written."""
@@ -121,7 +105,7 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
     for name in names:
         ax.plot(1e3 * h["t"], 1e-3 * h[f"gas.{name}.p"], lw=1.4, label=f"mpsolid: {name}")
     if measured:
-        t, p = read_points(measured)
+        t, p = read_reference(measured, "--measured", "t, p (ms, kPa)")
         ax.plot(t, p, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
     ax.set_xlabel("t (ms)")
     ax.set_ylabel("pressure (kPa)")
@@ -147,7 +131,7 @@ def displacement_history(folder, column, out=None, measured=None, measured_label
     ax = fig.subplots()
     ax.plot(1e3 * h["t"], 1e3 * (h[column] - h[column][0]), lw=1.4, label=f"mpsolid: {column}")
     if measured:
-        t, v = read_points(measured)
+        t, v = read_reference(measured, "--measured-displacement", "t, displacement (ms, mm)")
         ax.plot(t, v, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
     ax.axhline(0, color="0.6", lw=0.6)
     ax.set_xlabel("t (ms)")

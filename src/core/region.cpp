@@ -145,6 +145,12 @@ bool region_contains(const Region& region, Point2 p) {
       region);
 }
 
+bool shape_contains(const Shape& shape, Point2 p) {
+  if (!region_contains(shape.region, p)) return false;
+  return std::none_of(shape.holes.begin(), shape.holes.end(),
+                      [&](const Region& hole) { return region_contains(hole, p); });
+}
+
 Box2 region_bounds(const Region& region) {
   return std::visit(
       Overloaded{

@@ -92,6 +92,9 @@ struct Shape {
   Box2 bounds() const { return region_bounds(region); }
 };
 
+// Whether p is in the shape: in its region and in none of its holes.
+bool shape_contains(const Shape& shape, Point2 p);
+
 // The lattice sites (centres ((k + 1/2) l0, (m + 1/2) l0)) inside the
 // shape, row by row (y outer, x inner).
 std::vector<Point2> fill_shape(const Shape& shape, double l0);

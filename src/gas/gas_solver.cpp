@@ -420,8 +420,8 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
   // content is its state times its old volume.
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
                 [&](const std::array<int, Dim>&, std::size_t k) {
-                  if (was[k]) return;
                   const double f = was_fraction.empty() ? 1.0 : was_fraction[k];
+                  if (was[k] || f == 1.0) return;  // a whole cell's state is its content
                   for (int v = 0; v < kVars; ++v) q_[v][k] *= f;
                 });
   // The neighbours of k through faces open in `faces` that were gas (or have
@@ -453,7 +453,8 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
                     exchange_.lost.energy += q_[Dim + 1][k] * volume;
                   } else {
                     for (const std::size_t nb : to)
-                      for (int v = 0; v < kVars; ++v) q_[v][nb] += q_[v][k] / to.size();
+                      for (int v = 0; v < kVars; ++v)
+                        q_[v][nb] += q_[v][k] / static_cast<double>(to.size());
                   }
                   const double f = was_fraction.empty() ? 1.0 : was_fraction[k];
                   for (int v = 0; v < kVars; ++v) q_[v][k] /= f;  // its state, frozen
@@ -495,7 +496,7 @@ void GasSolver<Dim>::exchange_cells(const std::vector<std::uint8_t>& was,
   // Back to states: each gas cell's content over its new volume.
   for_each_cell(grid_, std::array<int, Dim>{}, grid_.cells,
                 [&](const std::array<int, Dim>&, std::size_t k) {
-                  if (solid_[k]) return;
+                  if (solid_[k] || fraction_[k] == 1.0) return;
                   for (int v = 0; v < kVars; ++v) q_[v][k] /= fraction_[k];
                 });
 }

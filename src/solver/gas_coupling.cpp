@@ -26,12 +26,6 @@ PressureSurface whole_surface(const CaseSpec& spec, const SolverState& s, int bo
                                0.0, spec.depth);
 }
 
-bool shape_contains(const Shape& shape, Point2 p) {
-  if (!region_contains(shape.region, p)) return false;
-  return std::none_of(shape.holes.begin(), shape.holes.end(),
-                      [&](const Region& hole) { return region_contains(hole, p); });
-}
-
 GasPrimitive<2> primitive_of(const GasStateSpec& s) {
   return {s.density, {s.velocity[0], s.velocity[1]}, s.pressure};
 }
@@ -159,7 +153,6 @@ void GasCoupling::exchange(SolverState& state, double dt) {
   const double step = static_cast<double>(window) * dt / substeps;
   std::vector<std::array<double, 4>> forces(segments.size());
   for (int k = 0; k < substeps; ++k) {
-    if (k > 0) gas_.set_walls(segments);
     gas_.advance(step);
     for (std::size_t g = 0; g < forces.size(); ++g)
       for (int c = 0; c < 4; ++c) forces[g][c] += gas_.wall_forces()[g][c] / substeps;

@@ -123,11 +123,9 @@ GasFrame Simulation::gas_frame() const {
 }
 
 void Simulation::remember_gas() {
-  if (!gas_) return;
-  if (gas_last_good_)
-    *gas_last_good_ = *gas_;
-  else
-    gas_last_good_ = std::make_unique<GasCoupling>(*gas_);
+  // What a checkpoint keeps (the conserved fields, the walls, the balance):
+  // a fifth of the solver's arrays.
+  if (gas_) gas_last_good_ = gas_->saved();
 }
 
 std::vector<std::pair<std::string, std::vector<double>>> Simulation::gas_saved() const {
@@ -141,8 +139,8 @@ void Simulation::restore_gas_saved(const GasCoupling::Saved& saved) {
 }
 
 void Simulation::restore_gas() {
-  if (!gas_ || !gas_last_good_) return;
-  *gas_ = *gas_last_good_;
+  if (!gas_ || gas_last_good_.empty()) return;
+  gas_->restore(gas_last_good_);
   gas_failure_.clear();
 }
 

@@ -95,7 +95,9 @@ class Simulation {
   // Over ranks, rank 0's copy: current after state() or refresh_fields().
   SolverState state_;
   std::unique_ptr<Stepper> stepper_;
-  std::unique_ptr<GasCoupling> gas_, gas_last_good_;
+  std::unique_ptr<GasCoupling> gas_;
+  // The gas at the last good check (GasCoupling::saved), empty until then.
+  std::vector<std::pair<std::string, std::vector<double>>> gas_last_good_;
   std::string gas_failure_;  // what went unphysical, where and when
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
