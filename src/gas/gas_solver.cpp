@@ -106,7 +106,11 @@ void GasSolver<Dim>::set_conserved(int v, const std::vector<double>& values) {
 
 template <int Dim>
 GasPrimitive<Dim> GasSolver<Dim>::primitive(const std::array<int, Dim>& cell) const {
-  const std::size_t k = grid_.index(cell);
+  return primitive_at(grid_.index(cell));
+}
+
+template <int Dim>
+GasPrimitive<Dim> GasSolver<Dim>::primitive_at(std::size_t k) const {
   GasConserved<Dim> q;
   q.rho = q_[0][k];
   for (int d = 0; d < Dim; ++d) q.m[d] = q_[1 + d][k];
@@ -134,6 +138,22 @@ double GasSolver<Dim>::stable_dt(double cfl) const {
       if (axis_active(d)) rate += std::abs(w.u[d]) + sound;
     worst = std::max(worst, rate / fraction(k));
   });
+  // A wall pushed hard into its gas sends a shock faster than the gas's own
+  // |u| + c (a piston started impulsively): the cells on each closed face.
+  for (const ClosedFace& f : blocked_)
+    for (const double side : {-1.0, 1.0}) {  // the cell below, above the face
+      const std::size_t k = side < 0 ? f.k - grid_.stride(f.axis) : f.k;
+      if (!pushes(k)) continue;
+      const GasPrimitive<Dim> w = primitive_at(k);
+      double un = 0, wall_un = 0, spread = 0;  // toward the wall; the axes the wave crosses
+      for (int d = 0; d < Dim; ++d) {
+        un -= side * w.u[d] * f.n[d];
+        wall_un -= side * f.v[d] * f.n[d];
+        spread += std::abs(f.n[d]);
+      }
+      const double wave = wall_wave_speed(w.rho, un, w.p, gamma_, wall_un) * spread;
+      worst = std::max(worst, wave / fraction(k));
+    }
   return worst > 0 ? cfl * grid_.h / worst : 0.0;
 }
 

@@ -136,6 +136,7 @@ class GasSolver {
     double offset;  // m: the crossing's place along the axis less the face's
     std::array<double, Dim> n, v;
   };
+  GasPrimitive<Dim> primitive_at(std::size_t k) const;  // of storage index k
   void fill_ghosts(Fields& q) const;
   void residual(Fields& q, Fields& rhs);
   bool axis_active(int axis) const;

@@ -22,4 +22,15 @@ inline double wall_pressure(double rho, double un, double p, double gamma, doubl
   return base > 0 ? p * std::pow(base, 2 * gamma / (gamma - 1)) : 0.0;
 }
 
+// How fast the wave that the wall sends into the gas (same arguments)
+// travels away from the wall: the shock's speed when the gas meets the wall
+// through a shock (faster than |un| + c when the wall is pushed in hard),
+// the rarefaction's head otherwise.
+inline double wall_wave_speed(double rho, double un, double p, double gamma, double wall_un) {
+  const double approach = un - wall_un, c = std::sqrt(gamma * p / rho);
+  if (approach <= 0) return std::abs(c - un);
+  const double half = 0.25 * (gamma + 1) * approach;
+  return std::abs(half + std::sqrt(half * half + c * c) - un);
+}
+
 }  // namespace mpsolid

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "src/core/loads.hpp"
+#include "src/core/rigid_body.hpp"
 #include "src/core/surface.hpp"
 #include "src/gas/shock_relations.hpp"
 
@@ -109,6 +110,12 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
     } else {
       o.surface = whole_surface(spec, state, b);
     }
+    const auto rigid =
+        std::find_if(state.rigid_bodies.begin(), state.rigid_bodies.end(), [&](const RigidBody& r) {
+          return r.name == spec.bodies[static_cast<std::size_t>(b)].name;
+        });
+    if (rigid != state.rigid_bodies.end() && rigid->motion.on)
+      o.driven = static_cast<int>(rigid - state.rigid_bodies.begin());
     o.first_piece = pieces;
     pieces += o.surface.from.size();
     outlines_.push_back(std::move(o));
@@ -135,6 +142,35 @@ std::vector<GasWallSegment> GasCoupling::walls(const SolverState& state) const {
   return out;
 }
 
+double GasCoupling::steps_within_half_a_cell(const SolverState& state, double dt, double fastest,
+                                             double limit) const {
+  // A driven body's speed is known ahead: a step or a ramp in its motion
+  // must not carry its wall further than the gas can follow in one window.
+  std::vector<std::pair<const RigidBody*, double>> driven;  // body, reach from its centroid
+  for (const Outline& o : outlines_) {
+    if (o.driven < 0) continue;
+    const RigidBody& r = state.rigid_bodies[static_cast<std::size_t>(o.driven)];
+    double reach = 0;  // of its outline's nodes, for its spin
+    for (std::size_t g = 0; g < o.surface.from.size(); ++g)
+      for (const auto& node : {last_walls_[o.first_piece + g].a, last_walls_[o.first_piece + g].b})
+        reach = std::max(reach, std::hypot(node[0] - r.xg, node[1] - r.yg));
+    driven.emplace_back(&r, reach);
+  }
+  if (driven.empty()) return limit;
+  double travel = 0;
+  for (double k = 0; k < limit; ++k) {
+    const double t = (static_cast<double>(state.step) + k) * dt;
+    double speed = fastest;
+    for (const auto& [r, reach] : driven)
+      speed = std::max(
+          speed, std::abs(r->motion.factor(t, dt)) *
+                     (std::hypot(r->motion.vx, r->motion.vy) + std::abs(r->motion.spin) * reach));
+    travel += speed * dt;
+    if (travel > 0.5 * spec_.cell) return std::max(k, 1.0);
+  }
+  return limit;
+}
+
 void GasCoupling::exchange(SolverState& state, double dt) {
   last_walls_ = walls(state);
   const std::vector<GasWallSegment>& segments = last_walls_;
@@ -148,6 +184,7 @@ void GasCoupling::exchange(SolverState& state, double dt) {
   const double gas_dt = gas_.stable_dt(spec_.cfl);
   double fit = std::floor(gas_dt / dt);
   if (fastest > 0) fit = std::min(fit, std::floor(0.5 * spec_.cell / (fastest * dt)));
+  if (fit > 1) fit = steps_within_half_a_cell(state, dt, fastest, fit);
   const std::int64_t window = fit >= 1 ? static_cast<std::int64_t>(std::min(fit, 1e9)) : 1;
   const int substeps = fit >= 1 ? 1 : static_cast<int>(std::ceil(dt / gas_dt));
   const double step = static_cast<double>(window) * dt / substeps;

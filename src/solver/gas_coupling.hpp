@@ -65,9 +65,15 @@ class GasCoupling {
   struct Outline {
     PressureSurface surface;
     int load = -1;
+    int driven = -1;  // its rigid body in SolverState::rigid_bodies when driven
     std::size_t first_piece = 0;
   };
   std::vector<GasWallSegment> walls(const SolverState& state) const;
+  // How many of the next `limit` solid steps keep every wall within half a
+  // cell of where the gas last saw it: the free walls at their present
+  // speed `fastest`, the driven ones at their motion's speed step by step.
+  double steps_within_half_a_cell(const SolverState& state, double dt, double fastest,
+                                  double limit) const;
 
   GasSpec spec_;
   double depth_;
