@@ -307,6 +307,72 @@ else
   fail "a dt above the stable step: exit $rc, stderr: $(head -c 600 "$TMP/too_big_dt.err")"
 fi
 
+# A gas that goes unphysical (two streams flying apart at 200 km/s at
+# CFL 1: the cell between them empties past zero pressure): exit 3, the
+# diagnosis names the time, the cell and the quantity, run.json says the
+# same, and the last good frame and history row stay.
+cat >"$TMP/vacuum.toml" <<'TOML'
+name = "vacuum"
+model = "finite_strain"
+l0 = 0.002
+[materials.steel]
+E = 220.0e9
+nu = 0.3
+rho = 7600.0
+[bodies.block]
+kind = "elastic"
+material = "steel"
+x = [0.0, 0.01]
+y = [0.0, 0.01]
+[time]
+dt = "auto"
+end = 1e-4
+[output]
+frame_interval = 1e-5
+[gas]
+cell = 0.001
+x = [0.02, 0.22]
+y = [0.0, 0.004]
+left = "outflow"
+right = "outflow"
+cfl = 1.0
+bodies = []
+[gas.initial]
+density = 1.2
+pressure = 100000.0
+velocity = [-100000.0, 0.0]
+[gas.regions.right]
+x = [0.12, 0.22]
+y = [0.0, 0.004]
+density = 1.2
+pressure = 100000.0
+velocity = [100000.0, 0.0]
+TOML
+mp vacuum run "$TMP/vacuum.toml" --out "$TMP/vacuum" --threads 2
+if [[ $rc -eq 3 ]] &&
+  grep -q '^mpsolid: unstable: unphysical gas at t = .*the gas went unphysical in cell (99, 0): density .* kg/m^3, pressure -.* Pa' "$TMP/vacuum.err" &&
+  grep -q 'last frame of .*frames.h5' "$TMP/vacuum.err" &&
+  /usr/bin/python3 - "$TMP/vacuum" <<'PY'
+import json, sys, h5py
+run = json.load(open(f"{sys.argv[1]}/run.json"))
+d = run["diagnosis"]
+assert run["outcome"] == "unstable" and d["criterion"] == "unphysical gas", run
+assert "cell (99, 0)" in d["where"] and "pressure" in d["where"], d
+with h5py.File(f"{sys.argv[1]}/frames.h5") as f:
+    last = f["frames"][sorted(f["frames"])[-1]]
+    assert last.attrs["step"] == d["last_good_step"], dict(last.attrs)
+    p = last["gas_pressure"][()]
+    assert (p > 0).all(), "the last frame's gas is the last good one"
+rows = open(f"{sys.argv[1]}/history.csv").read().splitlines()
+assert len(rows) >= 2 and float(rows[-1].split(",")[0]) == d["last_good_time"], rows[-1]
+PY
+then
+  ok "an unphysical gas: stopped (exit 3) with the cell and the quantity, the last good frame kept"
+else
+  fail "an unphysical gas: exit $rc"
+  show vacuum
+fi
+
 # ---- (d) the resolved case reproduces the run -----------------------------------
 
 AGAIN=$TMP/again
