@@ -91,9 +91,12 @@ def schlieren(folder, times_ms=None, out=None, columns=2, dpi=150):
     return path
 
 
-def probe_history(folder, out=None, measured=None, measured_label="experiment", dpi=150):
+def probe_history(folder, out=None, measured=None, measured_label="experiment", dpi=150,
+                  measured_from=0.0):
     """gas_probes.png: each probe's pressure over time; `measured`: a CSV of
-    points drawn over it. Returns the path written."""
+    points drawn over it, its t = 0 at the run's time `measured_from` (ms: an
+    experiment's clock starts when the shock passes a gauge). Returns the
+    path written."""
     run = open_run(folder)
     h = run.history_array
     names = [n[len("gas."):-len(".p")] for n in h.dtype.names
@@ -106,7 +109,8 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
         ax.plot(1e3 * h["t"], 1e-3 * h[f"gas.{name}.p"], lw=1.4, label=f"mpsolid: {name}")
     if measured:
         t, p = read_reference(measured, "--measured", "t, p (ms, kPa)")
-        ax.plot(t, p, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
+        ax.plot(t + measured_from, p, "o", ms=3, mfc="none", color="#c0392b",
+                label=measured_label)
     ax.set_xlabel("t (ms)")
     ax.set_ylabel("pressure (kPa)")
     ax.grid(alpha=0.3)
@@ -119,20 +123,30 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
 
 
 def displacement_history(folder, column, out=None, measured=None, measured_label="experiment",
-                         dpi=150):
+                         dpi=150, measured_from=0.0, against=()):
     """displacement.png: history.csv's `column` less its first value, in mm,
     against time in ms; `measured`: a CSV of points (t in ms, mm) drawn over
-    it. Returns the path written."""
-    run = open_run(folder)
-    h = run.history_array
-    if column not in h.dtype.names:
-        raise KeyError(f"{folder}: history.csv has no column '{column}'")
+    it, its t = 0 at the run's time `measured_from` (ms); `against`: other
+    runs' (folder, label) whose same column is drawn beside it (the run
+    itself is labelled by its case's name). Returns the path written."""
+    runs = [(folder, None)] + list(against)
     fig = Figure(figsize=(7.5, 4.2))
     ax = fig.subplots()
-    ax.plot(1e3 * h["t"], 1e3 * (h[column] - h[column][0]), lw=1.4, label=f"mpsolid: {column}")
+    run = None
+    for k, (path, label) in enumerate(runs):
+        r = open_run(path)
+        run = run or r
+        h = r.history_array
+        if column not in h.dtype.names:
+            raise KeyError(f"{path}: history.csv has no column '{column}'")
+        if label is None:
+            label = f"mpsolid: {column}" if len(runs) == 1 else r.case.get("name", path)
+        ax.plot(1e3 * h["t"], 1e3 * (h[column] - h[column][0]), lw=1.4,
+                ls="-" if k == 0 else (0, (5, 2 + k)), label=label)
     if measured:
         t, v = read_reference(measured, "--measured-displacement", "t, displacement (ms, mm)")
-        ax.plot(t, v, "o", ms=3, mfc="none", color="#c0392b", label=measured_label)
+        ax.plot(t + measured_from, v, "o", ms=3, mfc="none", color="#c0392b",
+                label=measured_label)
     ax.axhline(0, color="0.6", lw=0.6)
     ax.set_xlabel("t (ms)")
     ax.set_ylabel("displacement (mm)")

@@ -434,6 +434,21 @@ def check_gas(folder):
         size = png_size(os.path.join(folder, name))
         check(size is not None and size[0] >= least, f"{name} is a PNG at least {least} px wide",
               str(size))
+    # A body's displacement beside another run's (here the same run, shifted
+    # measured points): displacement.png; a missing --against folder: exit 2.
+    tip = os.path.join(ROOT, "docs", "data", "giordano_tip_measured_digitized.csv")
+    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools", "plot_gas.py"), folder,
+                             "--displacement", "panel.xmax", "--measured-displacement", tip,
+                             "--measured-displacement-from", "0.048", "--against",
+                             f"{folder}:again"], capture_output=True, text=True, timeout=300)
+    size = png_size(os.path.join(folder, "displacement.png"))
+    check(result.returncode == 0 and size is not None and size[0] >= 800,
+          "tools/plot_gas.py --displacement --against: displacement.png", result.stderr[-300:])
+    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools", "plot_gas.py"), folder,
+                             "--displacement", "panel.xmax", "--against",
+                             os.path.join(folder, "elsewhere")], capture_output=True, text=True)
+    check(result.returncode == 2 and "elsewhere" in result.stderr,
+          "tools/plot_gas.py --against a missing folder: exit 2 naming it")
     result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools", "plot_gas.py"),
                              os.path.join(folder, "nowhere")], capture_output=True, text=True)
     check(result.returncode == 2 and "nowhere" in result.stderr,
