@@ -6,7 +6,7 @@ DIR/gas_probes.png.
                           [--measured-from MS] [--measured-label TEXT]
                           [--displacement COLUMN] [--measured-displacement FILE.csv]
                           [--measured-displacement-from MS] [--against DIR[:LABEL] ...]
-                          [--dpi D]
+                          [--label TEXT] [--dpi D]
 
 schlieren.png: numerical schlieren (the density gradient's magnitude in grey,
 dark at shocks) with the bodies' particles drawn over it, at the frames
@@ -49,6 +49,7 @@ def main():
                         help="the run's time (ms) of the measured displacement's t = 0")
     parser.add_argument("--against", nargs="+", default=[], metavar="DIR[:LABEL]",
                         help="other runs whose --displacement column is drawn beside it")
+    parser.add_argument("--label", help="the run's own label beside --against runs")
     parser.add_argument("--dpi", type=int, default=150)
     args = parser.parse_args()
     if not os.path.isdir(args.folder):
@@ -70,7 +71,8 @@ def main():
             print(plot_gas.displacement_history(args.folder, args.displacement,
                                                 measured=args.measured_displacement,
                                                 measured_label=args.measured_label, dpi=args.dpi,
-                                     measured_from=args.measured_from))
+                                                measured_from=args.measured_displacement_from,
+                                                against=against, label=args.label))
     except (ImportError, FileNotFoundError, ValueError, KeyError,
             mpsolid_module("plot").PlotError) as e:
         print(f"plot_gas: {e}", file=sys.stderr)

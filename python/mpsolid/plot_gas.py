@@ -123,13 +123,14 @@ def probe_history(folder, out=None, measured=None, measured_label="experiment", 
 
 
 def displacement_history(folder, column, out=None, measured=None, measured_label="experiment",
-                         dpi=150, measured_from=0.0, against=()):
+                         dpi=150, measured_from=0.0, against=(), label=None):
     """displacement.png: history.csv's `column` less its first value, in mm,
     against time in ms; `measured`: a CSV of points (t in ms, mm) drawn over
     it, its t = 0 at the run's time `measured_from` (ms); `against`: other
-    runs' (folder, label) whose same column is drawn beside it (the run
-    itself is labelled by its case's name). Returns the path written."""
-    runs = [(folder, None)] + list(against)
+    runs' (folder, label) whose same column is drawn beside it; `label`: the
+    run's own (by default its case's name, or the column alone). Returns the
+    path written."""
+    runs = [(folder, label)] + list(against)
     fig = Figure(figsize=(7.5, 4.2))
     ax = fig.subplots()
     run = None
