@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "src/core/geometry.hpp"
+#include "src/core/overloaded.hpp"
 #include "src/core/region_boundary.hpp"
 
 namespace mpsolid {
@@ -27,11 +28,6 @@ using BgPoint = bg::model::d2::point_xy<double>;
 using BgPolygon = bg::model::polygon<BgPoint, false>;  // counter-clockwise, closed
 using BgMulti = bg::model::multi_polygon<BgPolygon>;
 using BgSegment = bg::model::segment<BgPoint>;
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
 
 double radians(double degrees) {
   return degrees * (std::numbers::pi / 180.0);
