@@ -34,28 +34,37 @@ void for_each_cell(const GasGrid<Dim>& g, std::type_identity_t<std::array<int, D
   }
 }
 
-// The same over the threads: the box's rows along axis 0 shared out in
-// contiguous blocks. f writes only the outputs of its own cell or face, so
-// any split gives the same bits.
+// The same over the threads: the box's cells, in storage order, shared out
+// in contiguous blocks (by cells, not rows: a grid of a few hundred rows
+// still splits). f writes only the outputs of its own cell or face, so any
+// split gives the same bits.
 template <int Dim, class F>
 void for_each_cell_parallel(const GasGrid<Dim>& g, std::type_identity_t<std::array<int, Dim>> lo,
                             std::type_identity_t<std::array<int, Dim>> hi, F&& f) {
-  std::size_t rows = 1;
+  std::size_t cells = 1;
   for (int d = 0; d < Dim; ++d) {
     if (lo[d] >= hi[d]) return;
-    if (d > 0) rows *= static_cast<std::size_t>(hi[d] - lo[d]);
+    cells *= static_cast<std::size_t>(hi[d] - lo[d]);
   }
-  parallel_blocks(0, rows, [&](std::size_t b, std::size_t e) {
-    for (std::size_t row = b; row < e; ++row) {
-      std::array<int, Dim> c = lo;
-      std::size_t rest = row;
-      for (int d = 1; d < Dim; ++d) {
-        const auto span = static_cast<std::size_t>(hi[d] - lo[d]);
-        c[d] = lo[d] + static_cast<int>(rest % span);
-        rest /= span;
+  parallel_blocks(0, cells, [&](std::size_t b, std::size_t e) {
+    // The block's first cell, then along its rows.
+    std::array<int, Dim> c = lo;
+    std::size_t rest = b;
+    for (int d = 0; d < Dim; ++d) {
+      const auto span = static_cast<std::size_t>(hi[d] - lo[d]);
+      c[d] = lo[d] + static_cast<int>(rest % span);
+      rest /= span;
+    }
+    std::size_t k = g.index(c);
+    for (std::size_t n = b; n < e; ++n) {
+      f(c, k);
+      if (++c[0] < hi[0]) {
+        ++k;
+        continue;
       }
-      std::size_t k = g.index(c);
-      for (; c[0] < hi[0]; ++c[0], ++k) f(c, k);
+      c[0] = lo[0];
+      for (int d = 1; d < Dim && ++c[d] == hi[d]; ++d) c[d] = lo[d];
+      k = g.index(c);
     }
   });
 }
