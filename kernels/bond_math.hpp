@@ -31,6 +31,17 @@ inline double lattice_number_density(double l0, double re) {
   return n0;
 }
 
+// The same over a full cubic-lattice neighbourhood (3D).
+inline double lattice_number_density_3d(double l0, double re) {
+  double n0 = 0.0;
+  const int reach = static_cast<int>(std::ceil(re / l0));
+  for (int a = -reach; a <= reach; ++a)
+    for (int b = -reach; b <= reach; ++b)
+      for (int c = -reach; c <= reach; ++c)
+        n0 += weight(l0 * std::sqrt(static_cast<double>(a * a + b * b + c * c)), re);
+  return n0;
+}
+
 using ::mpsolid::cross;
 
 // T: double, or a vector of lanes (kernels/lanes.hpp) computing lane by lane.

@@ -80,6 +80,13 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
+double max_abs(const Eigen::Matrix3Xd& m) {
+  double out = 0;
+  for (Eigen::Index c = 0; c < m.cols(); ++c)
+    for (int r = 0; r < 3; ++r) out = std::max(out, std::abs(m(r, c)));
+  return out;
+}
+
 bool same_bits(const ParticleStore& a, const ParticleStore& b) {
   bool same = true;
   for_each_particle_member([&](const auto& info, auto member) {

@@ -1,5 +1,6 @@
 #pragma once
 // Cases and comparisons shared by the tests.
+#include <Eigen/Dense>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ void run_model_passes(ParticleStore& p, const BondTable& bonds) {
 
 // Largest magnitude in v (0 for an empty v).
 double max_abs(const std::vector<double>& v);
+// Largest magnitude of a 3 x n matrix's entries (a plain loop: GCC 12 warns
+// falsely on Eigen's vectorised maxCoeff with AVX-512).
+double max_abs(const Eigen::Matrix3Xd& m);
 
 // Every state and work array of two stores is equal bit for bit.
 bool same_bits(const ParticleStore& a, const ParticleStore& b);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 
+#include "kernels/bond_math.hpp"
 #include "kernels/model_common.hpp"
 #include "kernels/reference/paper_model3.hpp"
 #include "kernels/reference/reference_kernels.hpp"
@@ -21,15 +22,6 @@ namespace {
 
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
-
-// The largest magnitude of a matrix's entries (a plain loop: GCC 12 warns
-// falsely on Eigen's vectorised maxCoeff with AVX-512).
-double largest(const Eigen::Matrix3Xd& m) {
-  double out = 0;
-  for (Eigen::Index c = 0; c < m.cols(); ++c)
-    for (int r = 0; r < 3; ++r) out = std::max(out, std::abs(m(r, c)));
-  return out;
-}
 
 TEST(PaperModel3, TheMeanRotationIsSymmetricAndTheMeanAngleAboutOneAxis) {
   const Vector3d axis = Vector3d(0.3, -1.0, 0.4).normalized();
@@ -121,13 +113,7 @@ reference::PaperState3 block() {
     for (int j = i + 1; j < n; ++j)
       if ((s.x0.col(j) - s.x0.col(i)).norm() < re)
         s.bonds.emplace_back(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-  // n0: the sum of w0 over an interior site's full neighbourhood.
-  for (int a = -3; a <= 3; ++a)
-    for (int b = -3; b <= 3; ++b)
-      for (int c = -3; c <= 3; ++c) {
-        const double r = l0 * std::sqrt(double(a * a + b * b + c * c));
-        if (r > 0 && r < re) s.n0 += re / r - 1;
-      }
+  s.n0 = bond_math::lattice_number_density_3d(l0, re);
   return s;
 }
 
@@ -140,7 +126,7 @@ TEST(PaperModel3, ARigidTurnAboutAnyAxisIsStressFree) {
   for (Eigen::Index i = 0; i < s.x.cols(); ++i)
     deformed.x.col(i) += 1e-5 * Vector3d(noise(rng), noise(rng), noise(rng));
   const reference::PaperResult3 d = reference::paper_model_3d(deformed);
-  const double f_scale = largest(d.force), t_scale = largest(d.torque);
+  const double f_scale = testing::max_abs(d.force), t_scale = testing::max_abs(d.torque);
   ASSERT_GT(f_scale, 0.0);
   ASSERT_GT(t_scale, 0.0);
 
@@ -152,8 +138,8 @@ TEST(PaperModel3, ARigidTurnAboutAnyAxisIsStressFree) {
   }
   const reference::PaperResult3 r = reference::paper_model_3d(s);
   for (std::size_t i = 0; i < r.strain.size(); ++i) EXPECT_NEAR(r.strain[i], 0.0, 1e-12);
-  EXPECT_LT(largest(r.force), 1e-9 * f_scale);
-  EXPECT_LT(largest(r.torque), 1e-9 * t_scale);
+  EXPECT_LT(testing::max_abs(r.force), 1e-9 * f_scale);
+  EXPECT_LT(testing::max_abs(r.torque), 1e-9 * t_scale);
 }
 
 TEST(PaperModel3, ForcesAndTorquesKeepMomentumAndAngularMomentum) {
@@ -166,7 +152,7 @@ TEST(PaperModel3, ForcesAndTorquesKeepMomentumAndAngularMomentum) {
         Quaterniond(Eigen::AngleAxisd(0.1 * noise(rng), Vector3d::Random().normalized()));
   }
   const reference::PaperResult3 r = reference::paper_model_3d(s);
-  const double f_scale = largest(r.force);
+  const double f_scale = testing::max_abs(r.force);
   Vector3d total = Vector3d::Zero(), moment = Vector3d::Zero();
   for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
     total += r.force.col(i);
@@ -175,7 +161,7 @@ TEST(PaperModel3, ForcesAndTorquesKeepMomentumAndAngularMomentum) {
   EXPECT_LT(total.norm(), 1e-12 * f_scale * static_cast<double>(s.x.cols()));
   EXPECT_LT(moment.norm(), 1e-12 * f_scale * 0.01 * static_cast<double>(s.x.cols()));
   // Not trivially zero: the shear forces' torques are there.
-  EXPECT_GT(largest(r.torque), 1e-6 * f_scale * 1e-3);
+  EXPECT_GT(testing::max_abs(r.torque), 1e-6 * f_scale * 1e-3);
 }
 
 }  // namespace
