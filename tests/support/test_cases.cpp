@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <random>
 
 #include <cmath>
 #include <cstdio>
@@ -72,6 +73,16 @@ int expect_interior_force_free(const ParticleStore& p, double l0, double toleran
       EXPECT_NEAR(p.fy[i], 0.0, tolerance) << "particle " << p.id[i];
     }
   return interior;
+}
+
+void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
+    p.x[i] += 0.05 * l0 * n(rng);
+    p.y[i] += 0.05 * l0 * n(rng);
+    p.theta[i] = angle + 0.05 * n(rng);
+  }
 }
 
 double max_abs(const std::vector<double>& v) {

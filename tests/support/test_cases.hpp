@@ -42,6 +42,10 @@ void run_model_passes(ParticleStore& p, const BondTable& bonds) {
   model.compute_forces(p, bonds, p.moving());
 }
 
+// Moves every moving particle by 5 % of l0 at random (normal, seeded) in x
+// and y, and turns it by `angle` plus 5 % noise: a deformed, rotated state.
+void jiggle(ParticleStore& p, double l0, unsigned seed, double angle);
+
 // Largest magnitude in v (0 for an empty v).
 double max_abs(const std::vector<double>& v);
 // Largest magnitude of a 3 x n matrix's entries (a plain loop: GCC 12 warns

@@ -25,13 +25,7 @@ using Eigen::Vector3d;
 TEST(CorrectedGradientNd, In2DItGivesThePlaneOraclesNumbers) {
   Simulation sim(testing::rod_case({"model=finite_strain"}));
   ParticleStore& p = sim.state_to_change().particles;
-  std::mt19937_64 rng(13);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  const double l0 = sim.spec().l0;
-  for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
-    p.x[i] += 0.05 * l0 * noise(rng);
-    p.y[i] += 0.05 * l0 * noise(rng);
-  }
+  testing::jiggle(p, sim.spec().l0, 13, 0.0);  // finite_strain reads no rotation
   const BondTable& bonds = sim.state().bonds;
   const reference::GradientResult plane =
       reference::finite_strain_model(p, bonds, 1.0, /*consistent=*/true);

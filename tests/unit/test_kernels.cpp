@@ -18,14 +18,7 @@ namespace {
 TEST(PaperModel, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case());
   ParticleStore& p = sim.state_to_change().particles;
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double l0 = sim.spec().l0;
-  for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
-    p.x[i] += 0.05 * l0 * n(rng);
-    p.y[i] += 0.05 * l0 * n(rng);
-    p.theta[i] = 0.4 + 0.05 * n(rng);  // a large common rotation plus noise
-  }
+  testing::jiggle(p, sim.spec().l0, 3, 0.4);  // a large common rotation plus noise
   sim.refresh_fields();
   testing::run_model_passes<PaperModel>(p, sim.state().bonds);
   const reference::PaperResult ref = reference::paper_model(p, sim.state().bonds);

@@ -16,15 +16,7 @@
 namespace mpsolid {
 namespace {
 
-void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
-    p.x[i] += 0.05 * l0 * n(rng);
-    p.y[i] += 0.05 * l0 * n(rng);
-    p.theta[i] = angle + 0.05 * n(rng);
-  }
-}
+using testing::jiggle;
 
 TEST(PaperConservative, KernelsMatchThePlainReference) {
   Simulation sim(testing::rod_case({"model=paper_conservative"}));

@@ -38,14 +38,7 @@ TEST(PaperModel3, TheMeanRotationIsSymmetricAndTheMeanAngleAboutOneAxis) {
 TEST(PaperModel3, APlaneMotionGivesThe2DModel) {
   Simulation sim(testing::rod_case());
   ParticleStore& p = sim.state_to_change().particles;
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  const double l0 = sim.spec().l0;
-  for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
-    p.x[i] += 0.05 * l0 * noise(rng);
-    p.y[i] += 0.05 * l0 * noise(rng);
-    p.theta[i] = 0.4 + 0.05 * noise(rng);
-  }
+  testing::jiggle(p, sim.spec().l0, 5, 0.4);
   const BondTable& bonds = sim.state().bonds;
   const reference::PaperResult plane = reference::paper_model(p, bonds);
 
