@@ -9,6 +9,7 @@
 // W depends on F only through F^T F, so the energy is rotation invariant and
 // angular momentum is conserved to round-off. Outputs: strain = ln J
 // (volumetric), pressure = -lambda ln(J) / J. Options in [finite_strain].
+#include <Eigen/Dense>
 #include <cmath>
 
 #include "kernels/corrected_gradient_model.hpp"
@@ -45,6 +46,46 @@ struct NeoHookeanLaw {
         std::abs(d) < 1e-3 ? d * d * (0.5 - d * (1.0 / 3 - d * (0.25 - d * 0.2))) : d - log_j;
     const double shear = 0.5 * ((h0 - h3) * (h0 - h3) + (h1 + h2) * (h1 + h2));
     return mu * (shear + excess) + 0.5 * lambda * log_j * log_j;
+  }
+
+  // The same law on a Dim x Dim matrix (kernels/gradient_gather_model.hpp),
+  // with W = mu/2 (F:F - Dim) - mu ln J + lambda/2 (ln J)^2.
+  template <int Dim>
+  static Eigen::Matrix<double, Dim, Dim> piola(const Eigen::Matrix<double, Dim, Dim>& f, double jac,
+                                               double lambda, double mu, double& strain,
+                                               double& pressure) {
+    const double log_j = std::log(jac);
+    const Eigen::Matrix<double, Dim, Dim> fit = f.inverse().transpose();
+    strain = log_j;
+    pressure = -lambda * log_j / jac;
+    return mu * (f - fit) + lambda * log_j * fit;
+  }
+
+  // W in H = F - I, as above: J - 1 = tr H + I2(H) + det H (I2 the sum of
+  // the principal 2 x 2 minors), and (F:F - Dim) / 2 - ln J = H:H / 2 - I2(H)
+  // - det H + (d - ln(1 + d)), with H:H / 2 - I2(H) = sum over a < b of
+  // ((h_ab + h_ba)^2 + (h_aa - h_bb)^2) / 2, less sum_a h_aa^2 / 2 in space:
+  // every term of the order of H^2 or H^3, computed from H.
+  template <int Dim>
+  static double energy_density(const Eigen::Matrix<double, Dim, Dim>& f, double lambda, double mu) {
+    const Eigen::Matrix<double, Dim, Dim> h = f - Eigen::Matrix<double, Dim, Dim>::Identity();
+    double minors = 0, quadratic = 0;
+    for (int a = 0; a < Dim; ++a)
+      for (int b = a + 1; b < Dim; ++b) {
+        minors += h(a, a) * h(b, b) - h(a, b) * h(b, a);
+        const double sum = h(a, b) + h(b, a), difference = h(a, a) - h(b, b);
+        quadratic += 0.5 * (sum * sum + difference * difference);
+      }
+    double cubic = 0;
+    if constexpr (Dim == 3) {
+      quadratic -= 0.5 * (h(0, 0) * h(0, 0) + h(1, 1) * h(1, 1) + h(2, 2) * h(2, 2));
+      cubic = h.determinant();
+    }
+    const double d = h.trace() + minors + cubic;
+    const double log_j = std::log1p(d);
+    const double excess =
+        std::abs(d) < 1e-3 ? d * d * (0.5 - d * (1.0 / 3 - d * (0.25 - d * 0.2))) : d - log_j;
+    return mu * (quadratic - cubic + excess) + 0.5 * lambda * log_j * log_j;
   }
 };
 

@@ -12,6 +12,8 @@
 // angular momentum is not conserved and large rotations are wrong. Outputs:
 // strain = tr eps, pressure = -(lambda + mu) tr eps (minus the in-plane mean
 // stress). Options in [linear_elastic].
+#include <Eigen/Dense>
+
 #include "kernels/corrected_gradient_model.hpp"
 
 namespace mpsolid {
@@ -38,6 +40,27 @@ struct HookeLaw {
     const double exx = f[0] - 1.0, eyy = f[3] - 1.0, exy = 0.5 * (f[1] + f[2]);
     const double trace = exx + eyy;
     return 0.5 * lambda * trace * trace + mu * (exx * exx + eyy * eyy + 2.0 * exy * exy);
+  }
+
+  // The same law on a Dim x Dim matrix (kernels/gradient_gather_model.hpp);
+  // the pressure is minus the mean normal stress, -(lambda + 2 mu / Dim) tr eps.
+  template <int Dim>
+  static Eigen::Matrix<double, Dim, Dim> piola(const Eigen::Matrix<double, Dim, Dim>& f, double,
+                                               double lambda, double mu, double& strain,
+                                               double& pressure) {
+    using M = Eigen::Matrix<double, Dim, Dim>;
+    const M eps = 0.5 * (f + f.transpose()) - M::Identity();
+    const double trace = eps.trace();
+    strain = trace;
+    pressure = -(lambda + 2.0 * mu / Dim) * trace;
+    return lambda * trace * M::Identity() + 2.0 * mu * eps;
+  }
+  template <int Dim>
+  static double energy_density(const Eigen::Matrix<double, Dim, Dim>& f, double lambda, double mu) {
+    using M = Eigen::Matrix<double, Dim, Dim>;
+    const M eps = 0.5 * (f + f.transpose()) - M::Identity();
+    const double trace = eps.trace();
+    return 0.5 * lambda * trace * trace + mu * eps.squaredNorm();
   }
 };
 

@@ -12,9 +12,11 @@
 
 namespace mpsolid {
 
-// n0 of the bond table's lattice (MODEL.md section 1).
+// n0 of the bond table's lattice (MODEL.md section 1): square or cubic.
 inline double number_density(const BondTable& bonds) {
-  return bond_math::lattice_number_density(bonds.geometry.l0, bonds.geometry.re);
+  const BondGeometry& g = bonds.geometry;
+  return g.dimension == 3 ? bond_math::lattice_number_density_3d(g.l0, g.re)
+                          : bond_math::lattice_number_density(g.l0, g.re);
 }
 
 // Thresholds of the integrity checks, from the case's [stability] section.

@@ -5,12 +5,13 @@
 
 namespace mpsolid {
 
-NeighborLists find_neighbors_brute_force(std::span<const double> x, std::span<const double> y,
-                                         double radius) {
+NeighborLists find_neighbors_brute_force(const PointCloud& p, double radius) {
   const double re2 = radius * radius;
-  return build_neighbor_lists(x.size(), [&](std::size_t i, auto&& emit) {
-    for (std::size_t j = 0; j < x.size(); ++j)
-      if (j != i && within_radius(x[i], y[i], x[j], y[j], re2)) emit(j);
+  return with_dimension(p, [&]<int Dim>() {
+    return build_neighbor_lists(p.size(), [&](std::size_t i, auto&& emit) {
+      for (std::size_t j = 0; j < p.size(); ++j)
+        if (j != i && within_radius<Dim>(p, i, j, re2)) emit(j);
+    });
   });
 }
 

@@ -40,7 +40,7 @@ NearCandidates near_candidates(const ContactState& c, const ParticleStore& p, do
     fx.push_back(x);
     fy.push_back(y);
   }
-  const NeighborLists found = find_neighbors_sparse_cells(fx, fy, cutoff);
+  const NeighborLists found = find_neighbors_sparse_cells({fx, fy}, cutoff);
   near.lists.offsets.assign(c.size() + 1, 0);
   std::size_t next = 0;  // the next finite candidate
   for (std::size_t a = 0; a < c.size(); ++a) {

@@ -26,19 +26,26 @@ NeighborLists build_neighbor_lists(std::size_t n, Visit&& visit);
 
 enum class NeighborMethod { cell_list, kdtree, brute_force };
 
-// All three give identical lists for the same points and radius.
-NeighborLists find_neighbors(std::span<const double> x, std::span<const double> y, double radius,
+// Points in the plane (z empty) or in space, one array per axis, read in
+// place.
+struct PointCloud {
+  PointCloud(std::span<const double> x_, std::span<const double> y_,
+             std::span<const double> z_ = {})
+      : x(x_), y(y_), z(z_) {}
+  std::span<const double> x, y, z;
+  std::size_t size() const { return x.size(); }
+  bool in_space() const { return !z.empty(); }
+};
+
+// All of them give identical lists for the same points and radius.
+NeighborLists find_neighbors(const PointCloud& points, double radius,
                              NeighborMethod method = NeighborMethod::cell_list);
-NeighborLists find_neighbors_cell_list(std::span<const double> x, std::span<const double> y,
-                                       double radius);
-NeighborLists find_neighbors_kdtree(std::span<const double> x, std::span<const double> y,
-                                    double radius);
+NeighborLists find_neighbors_cell_list(const PointCloud& points, double radius);
+NeighborLists find_neighbors_kdtree(const PointCloud& points, double radius);
 // Cells sorted by index instead of a dense grid: memory in the points, not
 // in the area they span (the contact search, whose bodies may fly apart).
-NeighborLists find_neighbors_sparse_cells(std::span<const double> x, std::span<const double> y,
-                                          double radius);
-NeighborLists find_neighbors_brute_force(std::span<const double> x, std::span<const double> y,
-                                         double radius);
+NeighborLists find_neighbors_sparse_cells(const PointCloud& points, double radius);
+NeighborLists find_neighbors_brute_force(const PointCloud& points, double radius);
 
 }  // namespace mpsolid
 

@@ -15,46 +15,51 @@ namespace mpsolid {
 
 namespace {
 struct CellEntry {
-  std::int64_t cx, cy;
+  std::int64_t cx, cy, cz;  // cz 0 in the plane
   std::uint32_t index;
 };
 bool cell_before(const CellEntry& a, const CellEntry& b) {
-  return std::tie(a.cx, a.cy) < std::tie(b.cx, b.cy);
+  return std::tie(a.cx, a.cy, a.cz) < std::tie(b.cx, b.cy, b.cz);
 }
 }  // namespace
 
-NeighborLists find_neighbors_sparse_cells(std::span<const double> x, std::span<const double> y,
-                                          double radius) {
-  if (x.empty()) return build_neighbor_lists(0, [](std::size_t, auto&&) {});
+NeighborLists find_neighbors_sparse_cells(const PointCloud& p, double radius) {
+  if (p.size() == 0) return build_neighbor_lists(0, [](std::size_t, auto&&) {});
   if (!(radius > 0.0) || !std::isfinite(radius))
     throw std::invalid_argument("neighbour radius must be positive and finite");
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i]))
-      throw std::invalid_argument("neighbour search: a point is not finite");
-  const double xmin = *std::min_element(x.begin(), x.end());
-  const double ymin = *std::min_element(y.begin(), y.end());
+  const int dims = p.in_space() ? 3 : 2;
+  for (int a = 0; a < dims; ++a)
+    for (const double v : axis(p, a))
+      if (!std::isfinite(v)) throw std::invalid_argument("neighbour search: a point is not finite");
+  double low[3] = {0, 0, 0};
+  for (int a = 0; a < dims; ++a) low[a] = *std::min_element(axis(p, a).begin(), axis(p, a).end());
   // The 1e-12 margin keeps a pair closer than radius at most one cell apart
   // despite rounding in the cell index.
   const double cell = radius * (1.0 + 1e-12);
-  const auto cell_of = [&](std::size_t i) {
-    return CellEntry{static_cast<std::int64_t>(std::floor((x[i] - xmin) / cell)),
-                     static_cast<std::int64_t>(std::floor((y[i] - ymin) / cell)),
-                     static_cast<std::uint32_t>(i)};
+  const auto along = [&](int a, std::size_t i) {
+    return a < dims ? static_cast<std::int64_t>(std::floor((axis(p, a)[i] - low[a]) / cell)) : 0;
   };
-  std::vector<CellEntry> sorted(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) sorted[i] = cell_of(i);
+  const auto cell_of = [&](std::size_t i) {
+    return CellEntry{along(0, i), along(1, i), along(2, i), static_cast<std::uint32_t>(i)};
+  };
+  std::vector<CellEntry> sorted(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) sorted[i] = cell_of(i);
   std::stable_sort(sorted.begin(), sorted.end(), cell_before);
   const double r2 = radius * radius;
-  return build_neighbor_lists(x.size(), [&](std::size_t i, auto&& emit) {
-    const CellEntry home = cell_of(i);
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const auto [first, last] = std::equal_range(
-            sorted.begin(), sorted.end(), CellEntry{home.cx + dx, home.cy + dy, 0}, cell_before);
-        for (auto e = first; e != last; ++e)
-          if (e->index != i && within_radius(x[i], y[i], x[e->index], y[e->index], r2))
-            emit(e->index);
-      }
+  const std::int64_t reach_z = dims == 3 ? 1 : 0;
+  return with_dimension(p, [&]<int Dim>() {
+    return build_neighbor_lists(p.size(), [&](std::size_t i, auto&& emit) {
+      const CellEntry home = cell_of(i);
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dz = -reach_z; dz <= reach_z; ++dz) {
+            const auto [first, last] = std::equal_range(
+                sorted.begin(), sorted.end(),
+                CellEntry{home.cx + dx, home.cy + dy, home.cz + dz, 0}, cell_before);
+            for (auto e = first; e != last; ++e)
+              if (e->index != i && within_radius<Dim>(p, i, e->index, r2)) emit(e->index);
+          }
+    });
   });
 }
 

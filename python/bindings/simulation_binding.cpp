@@ -306,17 +306,28 @@ void bind_simulation(py::module_& m) {
            "The address of the store's array `name` (for the zero-copy test).");
   // Every array of the store's table, under its name; PARTICLE_ARRAYS maps
   // each name to its role.
+  // An array of 3D stores only is in SPACE_ONLY_ARRAYS; a 2D simulation
+  // has no such attribute.
   py::dict arrays;
+  py::list space_only;
   for_each_particle_member([&](const auto& info, auto member) {
+    const std::string name = info.name;
+    const bool plane = info.present_in(2);
     cls.def_property_readonly(
         info.name,
-        [member](py::object self) {
-          return view(self, self.cast<SimulationHandle&>().sim().particles().*member);
+        [member, name, plane](py::object self) {
+          const ParticleStore& p = self.cast<SimulationHandle&>().sim().particles();
+          if (!plane && p.dimension != 3)
+            throw py::attribute_error(name + ": a " + std::to_string(p.dimension) +
+                                      "D simulation has no " + name);
+          return view(self, p.*member);
         },
         info.what);
     arrays[info.name] = role_name(info.role);
+    if (!plane) space_only.append(info.name);
   });
   m.attr("PARTICLE_ARRAYS") = arrays;
+  m.attr("SPACE_ONLY_ARRAYS") = py::tuple(space_only);
   py::dict kind_names;
   for (Kind k : {Kind::wall, Kind::elastic, Kind::rigid})
     kind_names[py::int_(static_cast<int>(k))] = kind_name(k);

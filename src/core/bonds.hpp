@@ -14,17 +14,20 @@ namespace mpsolid {
 struct BondGeometry {
   double l0 = 0;      // lattice spacing (m)
   double re = 0;      // interaction radius, 2.1 l0 (MODEL.md section 1)
-  double volume = 0;  // particle volume l0^2 * depth (m^3)
+  double volume = 0;  // particle volume: l0^2 * depth in the plane, l0^3 in space (m^3)
+  int dimension = 2;  // the lattice's: square (2) or cubic (3)
 };
 
 inline constexpr double kRadiusOverSpacing = 2.1;
 
 BondGeometry bond_geometry(double l0, double depth);
+// In space: a cube of side l0 per particle.
+BondGeometry bond_geometry_3d(double l0);
 
 struct BondTable {
   std::vector<std::uint32_t> offsets;   // size n + 1
   std::vector<std::uint32_t> neighbor;  // j, ascending within a row
-  std::vector<double> r0x, r0y;         // r0_ij = r0_j - r0_i
+  std::vector<double> r0x, r0y, r0z;    // r0_ij = r0_j - r0_i (r0z empty in the plane)
   BondGeometry geometry;
 
   std::size_t particle_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }

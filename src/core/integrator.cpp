@@ -19,6 +19,15 @@ void drift_translation(std::size_t n, double dt, double* __restrict vx, double* 
   }
 }
 
+// The third axis in space, with the plane's operations.
+void drift_axis(std::size_t n, double dt, double* __restrict v, double* __restrict x,
+                const double* __restrict f, const double* __restrict inv_mass) {
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] += dt * f[i] * inv_mass[i];
+    x[i] += dt * v[i];
+  }
+}
+
 void drift_rotation(std::size_t n, double dt, double* __restrict omega, double* __restrict theta,
                     double* __restrict half_cos, double* __restrict half_sin,
                     const double* __restrict torque, const double* __restrict inv_inertia) {
@@ -36,6 +45,7 @@ void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
   const std::size_t b = range.begin, n = range.end > b ? range.end - b : 0;
   drift_translation(n, dt, &p.vx[b], &p.vy[b], &p.x[b], &p.y[b], &p.fx[b], &p.fy[b],
                     &p.inv_mass[b]);
+  if (p.dimension == 3) drift_axis(n, dt, &p.vz[b], &p.z[b], &p.fz[b], &p.inv_mass[b]);
   if (with_rotation)
     drift_rotation(n, dt, &p.omega[b], &p.theta[b], &p.half_cos[b], &p.half_sin[b], &p.torque[b],
                    &p.inv_inertia[b]);
@@ -45,6 +55,7 @@ void kick(ParticleStore& p, Range range, double dt, bool with_rotation) {
   for (std::size_t i = range.begin; i < range.end; ++i) {
     p.vx[i] += dt * p.fx[i] * p.inv_mass[i];
     p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
+    if (p.dimension == 3) p.vz[i] += dt * p.fz[i] * p.inv_mass[i];
     if (with_rotation) p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
   }
 }

@@ -30,6 +30,17 @@ const char* role_name(ArrayRole role) {
   return "unknown";
 }
 
+const std::vector<StateArray>& state_arrays(int dimension) {
+  static const auto of = [](int d) {
+    std::vector<StateArray> out;
+    for (const StateArray& a : kStateArrays)
+      if (present_in(a.dims, d)) out.push_back(a);
+    return out;
+  };
+  static const std::vector<StateArray> plane = of(2), space = of(3);
+  return dimension == 3 ? space : plane;
+}
+
 void ParticleStore::resize(std::size_t n) {
   for_each_particle_array(*this, [n](const auto& info, auto& v) { v.assign(n, info.initial); });
 }

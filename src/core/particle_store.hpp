@@ -27,39 +27,55 @@ enum class ArrayRole : std::int8_t {
 
 const char* role_name(ArrayRole role);
 
+// The stores an array is in: every store, or only a 3D one.
+enum class ArrayDims : std::int8_t { any, space };
+
+inline constexpr bool present_in(ArrayDims dims, int dimension) {
+  return dims == ArrayDims::any || dimension == 3;
+}
+
 // The table: member, the name files and Python know it by, element type,
-// role, the value resize gives it, and what it holds. Kept in the order
-// checkpoints list the state arrays.
+// role, the dimensions it exists in, the value resize gives it, and what it
+// holds. Kept in the order checkpoints list the state arrays; a store of one
+// dimension holds the rows of that dimension, in this order.
 // clang-format off
 #define MPSOLID_PARTICLE_ARRAYS(X)                                                              \
-  X(x,           "x",           double,       state,     0.0,           "position x (m)")          \
-  X(y,           "y",           double,       state,     0.0,           "position y (m)")          \
-  X(vx,          "vx",          double,       state,     0.0,           "velocity x (m/s)")        \
-  X(vy,          "vy",          double,       state,     0.0,           "velocity y (m/s)")        \
-  X(theta,       "theta",       double,       state,     0.0,           "rotation angle (rad)")    \
-  X(omega,       "omega",       double,       state,     0.0,           "angular velocity (rad/s)") \
-  X(damping_loss, "damping_loss", double,     state,     0.0,           "energy damping took out (J)") \
-  X(x0,          "x0",          double,       reference, 0.0,           "reference position x (m)") \
-  X(y0,          "y0",          double,       reference, 0.0,           "reference position y (m)") \
-  X(half_cos,    "half_cos",    double,       work,      1.0,           "cos(theta/2)")            \
-  X(half_sin,    "half_sin",    double,       work,      0.0,           "sin(theta/2)")            \
-  X(strain,      "strain",      double,       work,      0.0,           "volumetric strain")       \
-  X(pressure,    "pressure",    double,       work,      0.0,           "pressure (Pa)")           \
-  X(fx,          "fx",          double,       work,      0.0,           "force x (N, over the depth)") \
-  X(fy,          "fy",          double,       work,      0.0,           "force y (N, over the depth)") \
-  X(torque,      "torque",      double,       work,      0.0,           "torque (N m)")            \
-  X(inv_mass,    "inv_mass",    double,       constant,  0.0,           "1 / mass (1/kg)")         \
-  X(inv_inertia, "inv_inertia", double,       constant,  0.0,           "1 / moment of inertia (1/(kg m^2))") \
-  X(lambda,      "lambda",      double,       constant,  0.0,           "Lame lambda of the material (Pa)") \
-  X(mu,          "mu",          double,       constant,  0.0,           "Lame mu of the material (Pa)") \
-  X(id,          "ids",         std::int32_t, constant,  0,             "stable id (creation order)") \
-  X(body,        "bodies",      std::int32_t, constant,  0,             "body index (case order)") \
-  X(material,    "materials",   std::int32_t, constant,  0,             "material index")          \
-  X(kind,        "kinds",       Kind,         constant,  Kind::elastic, "kind as its integer (KIND_NAMES names it)")
+  X(x,           "x",           double,       state,     any,   0.0,           "position x (m)")          \
+  X(y,           "y",           double,       state,     any,   0.0,           "position y (m)")          \
+  X(z,           "z",           double,       state,     space, 0.0,           "position z (m)")          \
+  X(vx,          "vx",          double,       state,     any,   0.0,           "velocity x (m/s)")        \
+  X(vy,          "vy",          double,       state,     any,   0.0,           "velocity y (m/s)")        \
+  X(vz,          "vz",          double,       state,     space, 0.0,           "velocity z (m/s)")        \
+  X(theta,       "theta",       double,       state,     any,   0.0,           "rotation angle (rad)")    \
+  X(omega,       "omega",       double,       state,     any,   0.0,           "angular velocity (rad/s)") \
+  X(damping_loss, "damping_loss", double,     state,     any,   0.0,           "energy damping took out (J)") \
+  X(x0,          "x0",          double,       reference, any,   0.0,           "reference position x (m)") \
+  X(y0,          "y0",          double,       reference, any,   0.0,           "reference position y (m)") \
+  X(z0,          "z0",          double,       reference, space, 0.0,           "reference position z (m)") \
+  X(half_cos,    "half_cos",    double,       work,      any,   1.0,           "cos(theta/2)")            \
+  X(half_sin,    "half_sin",    double,       work,      any,   0.0,           "sin(theta/2)")            \
+  X(strain,      "strain",      double,       work,      any,   0.0,           "volumetric strain")       \
+  X(pressure,    "pressure",    double,       work,      any,   0.0,           "pressure (Pa)")           \
+  X(fx,          "fx",          double,       work,      any,   0.0,           "force x (N; in 2D over the depth)") \
+  X(fy,          "fy",          double,       work,      any,   0.0,           "force y (N; in 2D over the depth)") \
+  X(fz,          "fz",          double,       work,      space, 0.0,           "force z (N)")             \
+  X(torque,      "torque",      double,       work,      any,   0.0,           "torque (N m)")            \
+  X(inv_mass,    "inv_mass",    double,       constant,  any,   0.0,           "1 / mass (1/kg)")         \
+  X(inv_inertia, "inv_inertia", double,       constant,  any,   0.0,           "1 / moment of inertia (1/(kg m^2))") \
+  X(lambda,      "lambda",      double,       constant,  any,   0.0,           "Lame lambda of the material (Pa)") \
+  X(mu,          "mu",          double,       constant,  any,   0.0,           "Lame mu of the material (Pa)") \
+  X(id,          "ids",         std::int32_t, constant,  any,   0,             "stable id (creation order)") \
+  X(body,        "bodies",      std::int32_t, constant,  any,   0,             "body index (case order)") \
+  X(material,    "materials",   std::int32_t, constant,  any,   0,             "material index")          \
+  X(kind,        "kinds",       Kind,         constant,  any,   Kind::elastic, "kind as its integer (KIND_NAMES names it)")
 // clang-format on
 
 struct ParticleStore {
-#define MPSOLID_DECLARE_ARRAY(member, name, type, role, initial, what) std::vector<type> member;
+  // 2 (plane strain) or 3; set before resize. An array of the other
+  // dimension only (z in 2D) stays empty.
+  int dimension = 2;
+#define MPSOLID_DECLARE_ARRAY(member, name, type, role, dims, initial, what) \
+  std::vector<type> member;
   MPSOLID_PARTICLE_ARRAYS(MPSOLID_DECLARE_ARRAY)
 #undef MPSOLID_DECLARE_ARRAY
 
@@ -92,25 +108,31 @@ struct ParticleArrayInfo {
   using value_type = T;
   const char* name;
   ArrayRole role;
+  ArrayDims dims;
   T initial;
   const char* what;
+  bool present_in(int dimension) const { return mpsolid::present_in(dims, dimension); }
 };
 
 // Calls f(ParticleArrayInfo<T>, std::vector<T> ParticleStore::*) for every
-// row of the table, in order.
+// row of the table, in order, both dimensions' rows (info.present_in says
+// whether a store holds it).
 template <class F>
 constexpr void for_each_particle_member(F&& f) {
-#define MPSOLID_VISIT_ARRAY(member, name, type, role, initial, what) \
-  f(ParticleArrayInfo<type>{name, ArrayRole::role, initial, what}, &ParticleStore::member);
+#define MPSOLID_VISIT_ARRAY(member, name, type, role, dims, initial, what)          \
+  f(ParticleArrayInfo<type>{name, ArrayRole::role, ArrayDims::dims, initial, what}, \
+    &ParticleStore::member);
   MPSOLID_PARTICLE_ARRAYS(MPSOLID_VISIT_ARRAY)
 #undef MPSOLID_VISIT_ARRAY
 }
 
-// Calls f(ParticleArrayInfo<T>, array) for every array of `p` (const or
-// not), in the table's order.
+// Calls f(ParticleArrayInfo<T>, array) for every array `p` (const or not)
+// holds in its dimension, in the table's order.
 template <class Store, class F>
 void for_each_particle_array(Store& p, F&& f) {
-  for_each_particle_member([&](const auto& info, auto member) { f(info, p.*member); });
+  for_each_particle_member([&](const auto& info, auto member) {
+    if (info.present_in(p.dimension)) f(info, p.*member);
+  });
 }
 
 // The arrays of the state role (all of them double), by name: what
@@ -118,6 +140,7 @@ void for_each_particle_array(Store& p, F&& f) {
 struct StateArray {
   const char* name;
   std::vector<double> ParticleStore::*member;
+  ArrayDims dims;
 };
 namespace detail {
 template <class T>
@@ -134,7 +157,7 @@ inline constexpr auto kStateArrays = [] {
   std::size_t k = 0;
   for_each_particle_member([&](const auto& info, auto member) {
     if constexpr (detail::holds_doubles<std::decay_t<decltype(info)>>)
-      if (info.role == ArrayRole::state) out[k++] = {info.name, member};
+      if (info.role == ArrayRole::state) out[k++] = {info.name, member, info.dims};
   });
   return out;
 }();
@@ -145,5 +168,8 @@ static_assert(
       return true;
     }(),
     "a state array must hold doubles");
+
+// The state arrays a store of `dimension` holds, in the table's order.
+const std::vector<StateArray>& state_arrays(int dimension);
 
 }  // namespace mpsolid

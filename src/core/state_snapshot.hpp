@@ -11,7 +11,7 @@ namespace mpsolid {
 struct StateSnapshot {
   std::int64_t step = -1;
   double peak_work = 0;
-  std::vector<std::vector<double>> arrays;  // kStateArrays, in that order
+  std::vector<std::vector<double>> arrays;  // state_arrays(dimension), in that order
   std::vector<RigidBody> rigid_bodies;
   std::vector<StepLoad> loads;
 
@@ -21,13 +21,15 @@ struct StateSnapshot {
 
 inline StateSnapshot StateSnapshot::capture(const SolverState& s) {
   StateSnapshot snap{s.step, s.peak_work, {}, s.rigid_bodies, s.loads};
-  for (const StateArray& a : kStateArrays) snap.arrays.push_back(s.particles.*a.member);
+  for (const StateArray& a : state_arrays(s.particles.dimension))
+    snap.arrays.push_back(s.particles.*a.member);
   return snap;
 }
 
 inline void StateSnapshot::restore(SolverState& s) const {
   std::size_t k = 0;
-  for (const StateArray& a : kStateArrays) s.particles.*a.member = arrays[k++];
+  for (const StateArray& a : state_arrays(s.particles.dimension))
+    s.particles.*a.member = arrays[k++];
   s.rigid_bodies = rigid_bodies;
   s.loads = loads;
   s.step = step;

@@ -35,11 +35,13 @@ LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
 
 ParticleStore local_particles(const ParticleStore& global, const LocalLayout& layout) {
   ParticleStore p;
+  p.dimension = global.dimension;
   p.resize(layout.size());
   for (std::size_t k = 0; k < layout.size(); ++k) {
     const std::size_t g = layout.global_of[k];
-    for_each_particle_member(
-        [&](const auto&, auto member) { (p.*member)[k] = (global.*member)[g]; });
+    for_each_particle_member([&](const auto& info, auto member) {
+      if (info.present_in(p.dimension)) (p.*member)[k] = (global.*member)[g];
+    });
   }
   p.set_kind_ranges();
   return p;

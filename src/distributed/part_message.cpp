@@ -97,10 +97,12 @@ class Reader {
 };
 
 void put_particles(Writer& w, const ParticleStore& p) {
+  w.put(static_cast<double>(p.dimension));
   for_each_particle_array(p, [&](const auto&, const auto& v) { w.put(v); });
 }
 ParticleStore get_particles(Reader& r) {
   ParticleStore p;
+  p.dimension = static_cast<int>(r.get());
   for_each_particle_array(p, [&](const auto&, auto& v) {
     v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
   });

@@ -73,7 +73,7 @@ void read_items(std::vector<Item>& items, Range owned, bool shared, const std::v
 
 void StateSlice::append(const SolverState& state, Range owned, std::vector<double>& out,
                         bool shared) {
-  for (const StateArray& a : kStateArrays) {
+  for (const StateArray& a : state_arrays(state.particles.dimension)) {
     const std::vector<double>& v = state.particles.*a.member;
     out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
                v.begin() + static_cast<long>(owned.end));
@@ -84,7 +84,7 @@ void StateSlice::append(const SolverState& state, Range owned, std::vector<doubl
 
 void StateSlice::read(SolverState& state, Range owned, const std::vector<double>& in,
                       std::size_t& at, bool shared) {
-  for (const StateArray& a : kStateArrays) {
+  for (const StateArray& a : state_arrays(state.particles.dimension)) {
     std::vector<double>& v = state.particles.*a.member;
     std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
                 v.begin() + static_cast<long>(owned.begin));

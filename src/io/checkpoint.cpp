@@ -68,7 +68,7 @@ std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
 
 std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
   std::vector<NamedArray> arrays;
-  for (const StateArray& a : kStateArrays) arrays.push_back({a.name, &(p.*a.member)});
+  for (const StateArray& a : state_arrays(p.dimension)) arrays.push_back({a.name, &(p.*a.member)});
   return arrays;
 }
 
@@ -78,7 +78,7 @@ Checkpoint capture_state(const SolverState& state) {
   c.peak_work = state.peak_work;
   const ParticleStore& p = state.particles;
   const std::vector<std::size_t> order = p.storage_of_id();
-  for (const StateArray& a : kStateArrays) {
+  for (const StateArray& a : state_arrays(p.dimension)) {
     const std::vector<double>& values = p.*a.member;
     std::vector<double> by_id(p.size());
     for (std::size_t k = 0; k < p.size(); ++k) by_id[k] = values[order[k]];

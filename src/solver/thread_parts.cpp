@@ -119,7 +119,8 @@ bool ThreadParts::advance(SolverState& global, std::int64_t steps, bool take_sli
   if (!whole) return false;
   if (take_slices) {
     slice_moves_ += 1;
-    slice_bytes_ += 8.0 * static_cast<double>(kStateArrays.size() * global.particles.size());
+    slice_bytes_ += 8.0 * static_cast<double>(state_arrays(global.particles.dimension).size() *
+                                              global.particles.size());
   }
   steps_ += steps;
   global.step = parts_[0]->part.local.step;
@@ -151,7 +152,7 @@ void ThreadParts::bring_back(SolverState& global) {
     const Range from = part.layout.owned;
     const std::size_t to = decomposition_.owned(t).begin;
     for_each_particle_member([&](const auto& info, auto member) {
-      if (info.role != ArrayRole::work) return;
+      if (info.role != ArrayRole::work || !info.present_in(global.particles.dimension)) return;
       const auto& source = part.local.particles.*member;
       std::copy(source.begin() + static_cast<long>(from.begin),
                 source.begin() + static_cast<long>(from.end),
@@ -163,7 +164,8 @@ void ThreadParts::bring_back(SolverState& global) {
   if (!on_each_thread(give_back))
     for (int t = 0; t < threads(); ++t) give_back(t);
   slice_moves_ += 1;
-  slice_bytes_ += 8.0 * static_cast<double>(kStateArrays.size() * global.particles.size());
+  slice_bytes_ += 8.0 * static_cast<double>(state_arrays(global.particles.dimension).size() *
+                                            global.particles.size());
   // Contact: the first step any part found a pair too close; the rebuilds,
   // which every part makes together, counted once.
   ContactState& contact = global.contact;

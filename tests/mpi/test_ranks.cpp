@@ -112,7 +112,7 @@ void expect_serial_bits(const CaseSpec& spec, std::int64_t steps) {
   const LocalLayout& layout = part.layout;
   EXPECT_EQ(local.step, steps);
   const ParticleStore& mine = local.particles;
-  for (const StateArray& array : kStateArrays) {
+  for (const StateArray& array : state_arrays(2)) {
     const std::vector<double>& values = mine.*array.member;
     const std::vector<double> owned(values.begin() + static_cast<long>(layout.owned.begin),
                                     values.begin() + static_cast<long>(layout.owned.end));
@@ -178,7 +178,7 @@ TEST(Ranks, DecomposedContactGivesTheSerialBits) {
   RankPart part = make_rank_part(base.spec(), base.state(), world);
   advance_rank_part(part, world, base.spec().dt, steps);
   const LocalLayout& layout = part.layout;
-  for (const StateArray& array : kStateArrays) {
+  for (const StateArray& array : state_arrays(2)) {
     const std::vector<double>& values = part.local.particles.*array.member;
     const std::vector<double> all =
         world.all_gather(std::vector<double>(values.begin() + static_cast<long>(layout.owned.begin),

@@ -132,7 +132,7 @@ TEST(Checkpoint, RoundTripKeepsEveryBit) {
   EXPECT_EQ(r.history_bytes, c.history_bytes);
   EXPECT_EQ(r.written_by, c.written_by);
   EXPECT_EQ(r.segments, c.segments);
-  ASSERT_EQ(r.particle_arrays.size(), kStateArrays.size());
+  ASSERT_EQ(r.particle_arrays.size(), state_arrays(2).size());
   for (std::size_t a = 0; a < c.particle_arrays.size(); ++a) {
     EXPECT_EQ(r.particle_arrays[a].first, c.particle_arrays[a].first);
     const auto &u = r.particle_arrays[a].second, &v = c.particle_arrays[a].second;

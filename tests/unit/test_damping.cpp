@@ -68,7 +68,7 @@ TEST(Damping, TheRodsEnergyBalanceClosesWithTheLoss) {
 // The state arrays (the forces of a damped step are the damped ones, which
 // a refresh of the fields recomputes without the damping).
 bool same_state(const ParticleStore& a, const ParticleStore& b) {
-  for (const StateArray& array : kStateArrays)
+  for (const StateArray& array : state_arrays(a.dimension))
     if (std::memcmp((a.*array.member).data(), (b.*array.member).data(),
                     a.size() * sizeof(double)) != 0)
       return false;

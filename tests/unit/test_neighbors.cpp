@@ -66,12 +66,11 @@ TEST(BondTable, IsSymmetricAndSorted) {
     }
 }
 
-void expect_all_searches_agree(const std::vector<double>& x, const std::vector<double>& y,
-                               double radius, std::size_t min_pairs) {
-  const NeighborLists brute = find_neighbors_brute_force(x, y, radius);
-  const NeighborLists cells = find_neighbors_cell_list(x, y, radius);
-  const NeighborLists tree = find_neighbors_kdtree(x, y, radius);
-  const NeighborLists sparse = find_neighbors_sparse_cells(x, y, radius);
+void expect_all_searches_agree(const PointCloud& points, double radius, std::size_t min_pairs) {
+  const NeighborLists brute = find_neighbors_brute_force(points, radius);
+  const NeighborLists cells = find_neighbors_cell_list(points, radius);
+  const NeighborLists tree = find_neighbors_kdtree(points, radius);
+  const NeighborLists sparse = find_neighbors_sparse_cells(points, radius);
   EXPECT_GE(brute.pair_count(), min_pairs);
   EXPECT_TRUE(cells == brute) << "cell list differs from brute force";
   EXPECT_TRUE(sparse == brute) << "sparse cells differ from brute force";
@@ -86,9 +85,9 @@ TEST(NeighborSearch, AgreeOnLattices) {
         x.push_back((k + 0.5) * l0);
         y.push_back((m + 0.5) * l0);
       }
-    expect_all_searches_agree(x, y, 2.1 * l0, 12 * x.size() / 2);
+    expect_all_searches_agree({x, y}, 2.1 * l0, 12 * x.size() / 2);
     // A radius exactly on a shell (2 l0): borderline pairs decided by one predicate.
-    expect_all_searches_agree(x, y, 2.0 * l0, 8 * x.size() / 2);
+    expect_all_searches_agree({x, y}, 2.0 * l0, 8 * x.size() / 2);
   }
 }
 
@@ -102,11 +101,11 @@ TEST(NeighborSearch, SparseCellsHandleAHugeSpread) {
     x.push_back(1000.0 + k * 0.5e-3);
     y.push_back(-1000.0);
   }
-  const NeighborLists sparse = find_neighbors_sparse_cells(x, y, 1.1e-3);
-  EXPECT_TRUE(sparse == find_neighbors_brute_force(x, y, 1.1e-3));
+  const NeighborLists sparse = find_neighbors_sparse_cells({x, y}, 1.1e-3);
+  EXPECT_TRUE(sparse == find_neighbors_brute_force({x, y}, 1.1e-3));
   EXPECT_EQ(sparse.pair_count(), 2u * (2 * 19 + 2 * 18));
   const std::vector<double> bad = {0.0, std::nan("")}, zeros = {0.0, 0.0};
-  EXPECT_THROW(find_neighbors_sparse_cells(bad, zeros, 1.0), std::invalid_argument);
+  EXPECT_THROW(find_neighbors_sparse_cells({bad, zeros}, 1.0), std::invalid_argument);
 }
 
 TEST(NeighborSearch, AgreeOnRandomClouds) {
@@ -118,11 +117,95 @@ TEST(NeighborSearch, AgreeOnRandomClouds) {
       x[i] = u(rng);
       y[i] = 0.25 * u(rng);
     }
-    expect_all_searches_agree(x, y, 0.1, 0);
+    expect_all_searches_agree({x, y}, 0.1, 0);
   }
   // Duplicated points and a degenerate line.
   std::vector<double> x = {0, 0, 0, 1e-3, 5}, y = {0, 0, 1e-3, 0, 0};
-  expect_all_searches_agree(x, y, 2e-3, 8);
+  expect_all_searches_agree({x, y}, 2e-3, 8);
+}
+
+TEST(NeighborSearch, AgreeInSpace) {
+  // A cubic lattice, at a radius between shells and on one (2 l0).
+  std::vector<double> x, y, z;
+  const double l0 = 1e-3;
+  for (int c = -2; c < 6; ++c)
+    for (int b = 0; b < 7; ++b)
+      for (int a = -3; a < 9; ++a) {
+        x.push_back((a + 0.5) * l0);
+        y.push_back((b + 0.5) * l0);
+        z.push_back((c + 0.5) * l0);
+      }
+  expect_all_searches_agree({x, y, z}, 2.1 * l0, 32 * x.size() / 4);
+  expect_all_searches_agree({x, y, z}, 2.0 * l0, 26 * x.size() / 4);
+  // Random clouds, flat ones among them (all z equal: still searched in space).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 3.0);
+  for (const double depth : {1.0, 0.1, 0.0}) {
+    std::vector<double> rx(1500), ry(1500), rz(1500);
+    for (std::size_t i = 0; i < rx.size(); ++i) {
+      rx[i] = u(rng);
+      ry[i] = 0.5 * u(rng);
+      rz[i] = depth * u(rng);
+    }
+    expect_all_searches_agree({rx, ry, rz}, 0.2, 0);
+  }
+}
+
+// A long thin cloud in space: the grid grows its cells to stay near the
+// points' count instead of allocating the per-axis cap cubed.
+TEST(NeighborSearch, SpaceGridStaysSmallForASpreadCloud) {
+  std::vector<double> x, y, z;
+  for (int k = 0; k < 40; ++k) {
+    x.push_back(k * 1e3);
+    y.push_back(k % 2 ? 1e3 : 0.0);
+    z.push_back(k % 3 ? -1e3 : 0.0);
+  }
+  x.push_back(0.5e-3);
+  y.push_back(0.0);
+  z.push_back(0.0);
+  const NeighborLists cells = find_neighbors_cell_list({x, y, z}, 1e-3);
+  EXPECT_TRUE(cells == find_neighbors_brute_force({x, y, z}, 1e-3));
+  EXPECT_EQ(cells.pair_count(), 2u);
+}
+
+// In space an interior particle of the cubic lattice has 32 bonds (the
+// shells at l0, sqrt 2, sqrt 3 and 2 l0: 6 + 12 + 8 + 6) whose weights sum
+// to the lattice's n0; the table holds r0 in three components.
+TEST(BondTable, InteriorParticleInSpaceHas32Bonds) {
+  ParticleStore p;
+  p.dimension = 3;
+  const int side = 7;
+  const double l0 = 2e-3;
+  p.resize(side * side * side);
+  for (int c = 0, i = 0; c < side; ++c)
+    for (int b = 0; b < side; ++b)
+      for (int a = 0; a < side; ++a, ++i) {
+        p.x0[i] = a * l0;
+        p.y0[i] = b * l0;
+        p.z0[i] = c * l0;
+        p.id[i] = i;
+      }
+  const BondGeometry g = bond_geometry_3d(l0);
+  EXPECT_DOUBLE_EQ(g.volume, l0 * l0 * l0);
+  const BondTable bonds = build_bonds(p, g);
+  const std::size_t centre = (3 * side + 3) * side + 3;
+  ASSERT_EQ(bonds.end(centre) - bonds.begin(centre), 32u);
+  double n = 0.0;
+  for (std::uint32_t b = bonds.begin(centre); b < bonds.end(centre); ++b) {
+    const std::size_t j = bonds.neighbor[b];
+    EXPECT_EQ(bonds.r0z[b], p.z0[j] - p.z0[centre]);
+    n += bond_math::weight(std::sqrt(bonds.r0x[b] * bonds.r0x[b] + bonds.r0y[b] * bonds.r0y[b] +
+                                     bonds.r0z[b] * bonds.r0z[b]),
+                           g.re);
+  }
+  EXPECT_NEAR(n, bond_math::lattice_number_density_3d(l0, g.re), 1e-12 * n);
+  // The z components enter the hash: the same lattice turned is another table.
+  ParticleStore turned = p;
+  std::swap(turned.y0, turned.z0);
+  const BondTable other = build_bonds(turned, g);
+  EXPECT_EQ(other.neighbor.size(), bonds.neighbor.size());
+  EXPECT_NE(other.hash(), bonds.hash());
+  EXPECT_EQ(build_bonds(p, g, NeighborMethod::kdtree).hash(), bonds.hash());
 }
 
 TEST(BondTable, SameFromEverySearch) {
@@ -135,6 +218,7 @@ TEST(BondTable, SameFromEverySearch) {
   EXPECT_EQ(cells.neighbor, tree.neighbor);
   EXPECT_EQ(cells.r0x, tree.r0x);
   EXPECT_EQ(cells.r0y, tree.r0y);
+  EXPECT_TRUE(cells.r0z.empty());
 }
 
 }  // namespace

@@ -41,28 +41,77 @@ void fill(ParticleStore& p, ArrayRole role) {
   });
 }
 
-std::set<std::string> state_names() {
+std::set<std::string> state_names(int dimension = 2) {
   std::set<std::string> names;
   for_each_particle_member([&](const auto& info, auto) {
-    if (info.role == ArrayRole::state) names.insert(info.name);
+    if (info.role == ArrayRole::state && info.present_in(dimension)) names.insert(info.name);
   });
   return names;
 }
 
-TEST(ParticleTable, ResizeGivesEveryArrayItsInitialValue) {
-  ParticleStore p;
-  p.resize(5);
-  for_each_particle_array(p, [&](const auto& info, const auto& v) {
-    ASSERT_EQ(v.size(), 5u) << info.name;
-    for (const auto& value : v) EXPECT_TRUE(value == info.initial) << info.name;
-  });
+TEST(ParticleTable, ResizeGivesEveryArrayOfTheDimensionItsInitialValue) {
+  for (const int dimension : {2, 3}) {
+    ParticleStore p;
+    p.dimension = dimension;
+    p.resize(5);
+    for_each_particle_member([&](const auto& info, auto member) {
+      const auto& v = p.*member;
+      ASSERT_EQ(v.size(), info.present_in(dimension) ? 5u : 0u) << info.name << " " << dimension;
+      for (const auto& value : v) EXPECT_TRUE(value == info.initial) << info.name;
+    });
+  }
 }
 
 TEST(ParticleTable, NamesAreUnique) {
   std::set<std::string> names;
   for_each_particle_member(
       [&](const auto& info, auto) { EXPECT_TRUE(names.insert(info.name).second) << info.name; });
-  EXPECT_EQ(state_names().size(), kStateArrays.size());
+  EXPECT_EQ(state_names(2).size(), state_arrays(2).size());
+  EXPECT_EQ(state_names(3).size(), state_arrays(3).size());
+}
+
+// The plane store's arrays, in order, are the ones files and checkpoints
+// have always listed; space adds the third component of each vector.
+TEST(ParticleTable, ThePlaneRowsAreTheSpaceRowsWithoutTheThirdComponents) {
+  std::vector<std::string> plane, space;
+  for (const StateArray& a : state_arrays(2)) plane.push_back(a.name);
+  for (const StateArray& a : state_arrays(3)) space.push_back(a.name);
+  EXPECT_EQ(plane,
+            (std::vector<std::string>{"x", "y", "vx", "vy", "theta", "omega", "damping_loss"}));
+  EXPECT_EQ(space, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "theta", "omega",
+                                             "damping_loss"}));
+}
+
+TEST(ParticleTable, EveryStateArrayOfASpaceStoreGoesThroughASnapshotAndARanksLayout) {
+  SolverState s;
+  s.particles.dimension = 3;
+  s.particles.resize(6);
+  for (const ArrayRole role :
+       {ArrayRole::state, ArrayRole::reference, ArrayRole::work, ArrayRole::constant})
+    fill(s.particles, role);
+  const ParticleStore written = s.particles;
+  const StateSnapshot snap = StateSnapshot::capture(s);
+  ParticleStore fresh;
+  fresh.dimension = 3;
+  fresh.resize(written.size());
+  s.particles = fresh;
+  snap.restore(s);
+  for_each_particle_member([&](const auto& info, auto member) {
+    const auto& expected = info.role == ArrayRole::state ? written.*member : fresh.*member;
+    EXPECT_TRUE(same_bits(s.particles.*member, expected)) << info.name;
+  });
+
+  LocalLayout layout;
+  layout.global_of = {4, 1, 5};
+  layout.owned = {0, 2};
+  const ParticleStore local = local_particles(written, layout);
+  EXPECT_EQ(local.dimension, 3);
+  for_each_particle_member([&](const auto& info, auto member) {
+    const auto& values = local.*member;
+    ASSERT_EQ(values.size(), 3u) << info.name;
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_TRUE(values[k] == (written.*member)[layout.global_of[k]]) << info.name;
+  });
 }
 
 TEST(ParticleTable, EveryStateArrayGoesThroughASnapshot) {
@@ -124,7 +173,9 @@ TEST(ParticleTable, EveryArrayGoesThroughARanksPart) {
     std::size_t next = 0;
     const LocalPart got = unpack_local_part([&] { return pieces.at(next++); });
     const LocalLayout& layout = sent.layout;
+    EXPECT_EQ(got.state.particles.dimension, 2);
     for_each_particle_member([&](const auto& info, auto member) {
+      if (!info.present_in(2)) return;
       const auto& values = got.state.particles.*member;
       ASSERT_EQ(values.size(), layout.size()) << info.name;
       for (std::size_t k = 0; k < layout.size(); ++k)
