@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   register_contact_benchmarks();
   register_team_benchmarks();
   register_gas_benchmarks();
+  register_space_benchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

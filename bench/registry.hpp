@@ -10,5 +10,6 @@ void register_neighbor_benchmarks();   // bench_neighbors.cpp
 void register_contact_benchmarks();    // bench_contact.cpp
 void register_team_benchmarks();       // bench_team.cpp
 void register_gas_benchmarks();        // bench_gas.cpp
+void register_space_benchmarks();      // bench_space.cpp
 
 }  // namespace mpsolid::bench

@@ -81,8 +81,30 @@ void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
   for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
     p.x[i] += 0.05 * l0 * n(rng);
     p.y[i] += 0.05 * l0 * n(rng);
+    if (p.dimension == 3) p.z[i] += 0.05 * l0 * n(rng);
     p.theta[i] = angle + 0.05 * n(rng);
   }
+}
+
+ParticleStore space_block(int nx, int ny, int nz, double l0, double lambda, double mu,
+                          double density) {
+  ParticleStore p;
+  p.dimension = 3;
+  p.resize(static_cast<std::size_t>(nx * ny * nz));
+  std::size_t i = 0;
+  for (int c = 0; c < nz; ++c)
+    for (int b = 0; b < ny; ++b)
+      for (int a = 0; a < nx; ++a, ++i) {
+        p.x[i] = p.x0[i] = (a + 0.5) * l0;
+        p.y[i] = p.y0[i] = (b + 0.5) * l0;
+        p.z[i] = p.z0[i] = (c + 0.5) * l0;
+        p.id[i] = static_cast<std::int32_t>(i);
+        p.lambda[i] = lambda;
+        p.mu[i] = mu;
+        p.inv_mass[i] = 1.0 / (density * l0 * l0 * l0);
+      }
+  p.set_kind_ranges();
+  return p;
 }
 
 double max_abs(const std::vector<double>& v) {
