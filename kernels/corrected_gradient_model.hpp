@@ -292,15 +292,7 @@ class CorrectedGradientModel {
   // neighbourhood (needs the strain pass at the current state).
   IntegrityReport check_integrity(const ParticleStore&, const BondTable&,
                                   const IntegrityLimits& limits, Range range) const {
-    IntegrityReport r;
-    if (range.empty()) return r;
-    r.particle = index_of_min(jacobian_, range);
-    r.neighbor = r.particle;
-    r.value = jacobian_[r.particle];
-    r.failed = !(r.value > limits.min_jacobian);
-    r.criterion =
-        fmt::format("particle neighbourhood collapsed (J = det F <= {})", limits.min_jacobian);
-    return r;
+    return jacobian_integrity(jacobian_, limits, range);
   }
 
   // Row-major 2x2 tensors per particle, from the last strain pass.

@@ -169,15 +169,7 @@ class GradientGatherModel {
   // neighbourhood (needs the strain pass at the current state).
   IntegrityReport check_integrity(const ParticleStore&, const BondTable&,
                                   const IntegrityLimits& limits, Range range) const {
-    IntegrityReport r;
-    if (range.empty()) return r;
-    r.particle = index_of_min(jacobian_, range);
-    r.neighbor = r.particle;
-    r.value = jacobian_[r.particle];
-    r.failed = !(r.value > limits.min_jacobian);
-    r.criterion =
-        fmt::format("particle neighbourhood collapsed (J = det F <= {})", limits.min_jacobian);
-    return r;
+    return jacobian_integrity(jacobian_, limits, range);
   }
 
   // The last strain pass's F_i and J_i, and the law's stress P(F_i).

@@ -2,6 +2,8 @@
 // What every bond model shares besides the bond loop: the lattice constants
 // its coefficients start from, and the integrity check it reports to the
 // blow-up diagnosis.
+#include <fmt/format.h>
+
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -46,6 +48,22 @@ inline std::size_t index_of_min(const std::vector<double>& values, Range range) 
   for (std::size_t i = range.begin + 1; i < range.end; ++i)
     if (values[i] < values[best]) best = i;
   return best;
+}
+
+// The corrected-gradient models' check: the smallest J_i among the
+// particles of a range, failed at or below the limit (a collapsed
+// neighbourhood).
+inline IntegrityReport jacobian_integrity(const std::vector<double>& jacobian,
+                                          const IntegrityLimits& limits, Range range) {
+  IntegrityReport r;
+  if (range.empty()) return r;
+  r.particle = index_of_min(jacobian, range);
+  r.neighbor = r.particle;
+  r.value = jacobian[r.particle];
+  r.failed = !(r.value > limits.min_jacobian);
+  r.criterion =
+      fmt::format("particle neighbourhood collapsed (J = det F <= {})", limits.min_jacobian);
+  return r;
 }
 
 }  // namespace mpsolid

@@ -306,18 +306,19 @@ void bind_simulation(py::module_& m) {
            "The address of the store's array `name` (for the zero-copy test).");
   // Every array of the store's table, under its name; PARTICLE_ARRAYS maps
   // each name to its role.
-  // An array of 3D stores only is in SPACE_ONLY_ARRAYS; a 2D simulation
-  // has no such attribute.
+  // An array of 3D stores only is in SPACE_ONLY_ARRAYS (z), one of 2D
+  // stores only in PLANE_ONLY_ARRAYS (theta); a simulation of the other
+  // dimension has no such attribute.
   py::dict arrays;
-  py::list space_only;
+  py::list space_only, plane_only;
   for_each_particle_member([&](const auto& info, auto member) {
     const std::string name = info.name;
-    const bool plane = info.present_in(2);
+    const bool plane = info.present_in(2), space = info.present_in(3);
     cls.def_property_readonly(
         info.name,
-        [member, name, plane](py::object self) {
+        [member, name, plane, space](py::object self) {
           const ParticleStore& p = self.cast<SimulationHandle&>().sim().particles();
-          if (!plane && p.dimension != 3)
+          if (!(p.dimension == 3 ? space : plane))
             throw py::attribute_error(name + ": a " + std::to_string(p.dimension) +
                                       "D simulation has no " + name);
           return view(self, p.*member);
@@ -325,9 +326,11 @@ void bind_simulation(py::module_& m) {
         info.what);
     arrays[info.name] = role_name(info.role);
     if (!plane) space_only.append(info.name);
+    if (!space) plane_only.append(info.name);
   });
   m.attr("PARTICLE_ARRAYS") = arrays;
   m.attr("SPACE_ONLY_ARRAYS") = py::tuple(space_only);
+  m.attr("PLANE_ONLY_ARRAYS") = py::tuple(plane_only);
   py::dict kind_names;
   for (Kind k : {Kind::wall, Kind::elastic, Kind::rigid})
     kind_names[py::int_(static_cast<int>(k))] = kind_name(k);

@@ -11,6 +11,7 @@ The compiled part is the extension _mpsolid; this package re-exports it.
 from ._mpsolid import (
     KIND_NAMES,
     PARTICLE_ARRAYS,
+    PLANE_ONLY_ARRAYS,
     SPACE_ONLY_ARRAYS,
     Case,
     InputError,
@@ -33,6 +34,7 @@ __all__ = [
     "InputError",
     "KIND_NAMES",
     "PARTICLE_ARRAYS",
+    "PLANE_ONLY_ARRAYS",
     "SPACE_ONLY_ARRAYS",
     "MPSOLID_EXECUTABLE",
     "Simulation",

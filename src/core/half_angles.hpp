@@ -67,7 +67,9 @@ inline void set_half_angle(ParticleStore& p, std::size_t i) {
   p.half_sin[i] = h.sin;
 }
 
+// (In space an orientation is a quaternion: nothing to compute.)
 inline void compute_half_angles(ParticleStore& p, Range range) {
+  if (p.dimension == 3) return;
   parallel_for(range.begin, range.end, [&](std::size_t i) { set_half_angle(p, i); });
 }
 

@@ -1,5 +1,7 @@
 #include "src/core/integrator.hpp"
 
+#include <Eigen/Geometry>
+
 #include "src/core/half_angles.hpp"
 
 namespace mpsolid {
@@ -39,6 +41,26 @@ void drift_rotation(std::size_t n, double dt, double* __restrict omega, double* 
     half_sin[i] = h.sin;
   }
 }
+// In space: omega += dt tau / I (a cubic particle's inertia is isotropic,
+// so the spin has no gyroscopic term), then the orientation turned by
+// omega dt about the fixed axes and normalised.
+void drift_rotation_in_space(ParticleStore& p, Range range, double dt) {
+  for (std::size_t i = range.begin; i < range.end; ++i) {
+    p.omega_x[i] += dt * p.torque_x[i] * p.inv_inertia[i];
+    p.omega_y[i] += dt * p.torque_y[i] * p.inv_inertia[i];
+    p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
+    const Eigen::Vector3d turn = dt * Eigen::Vector3d(p.omega_x[i], p.omega_y[i], p.omega[i]);
+    const double angle = turn.norm();
+    if (angle == 0.0) continue;
+    const Eigen::Quaterniond q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle)) *
+                                  Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]))
+                                     .normalized();
+    p.qw[i] = q.w();
+    p.qx[i] = q.x();
+    p.qy[i] = q.y();
+    p.qz[i] = q.z();
+  }
+}
 }  // namespace
 
 void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
@@ -46,7 +68,9 @@ void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
   drift_translation(n, dt, &p.vx[b], &p.vy[b], &p.x[b], &p.y[b], &p.fx[b], &p.fy[b],
                     &p.inv_mass[b]);
   if (p.dimension == 3) drift_axis(n, dt, &p.vz[b], &p.z[b], &p.fz[b], &p.inv_mass[b]);
-  if (with_rotation)
+  if (with_rotation && p.dimension == 3)
+    drift_rotation_in_space(p, range, dt);
+  else if (with_rotation)
     drift_rotation(n, dt, &p.omega[b], &p.theta[b], &p.half_cos[b], &p.half_sin[b], &p.torque[b],
                    &p.inv_inertia[b]);
 }
@@ -57,6 +81,10 @@ void kick(ParticleStore& p, Range range, double dt, bool with_rotation) {
     p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
     if (p.dimension == 3) p.vz[i] += dt * p.fz[i] * p.inv_mass[i];
     if (with_rotation) p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
+    if (with_rotation && p.dimension == 3) {
+      p.omega_x[i] += dt * p.torque_x[i] * p.inv_inertia[i];
+      p.omega_y[i] += dt * p.torque_y[i] * p.inv_inertia[i];
+    }
   }
 }
 

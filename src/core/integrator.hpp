@@ -7,7 +7,8 @@ namespace mpsolid {
 
 // v += dt f / m, r += dt v; with rotation also omega += dt tau / I,
 // theta += dt omega and the new half angles (so the next step needs no
-// separate half-angle pass).
+// separate half-angle pass); in space the orientation quaternion turned by
+// omega dt instead.
 void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation);
 
 // Velocity update only (rigid particles: their pose update places them).

@@ -27,11 +27,12 @@ enum class ArrayRole : std::int8_t {
 
 const char* role_name(ArrayRole role);
 
-// The stores an array is in: every store, or only a 3D one.
-enum class ArrayDims : std::int8_t { any, space };
+// The stores an array is in: every store, only a 2D one, or only a 3D one
+// (an orientation is an angle in the plane, a quaternion in space).
+enum class ArrayDims : std::int8_t { any, plane, space };
 
 inline constexpr bool present_in(ArrayDims dims, int dimension) {
-  return dims == ArrayDims::any || dimension == 3;
+  return dims == ArrayDims::any || (dims == ArrayDims::plane) == (dimension == 2);
 }
 
 // The table: member, the name files and Python know it by, element type,
@@ -46,20 +47,28 @@ inline constexpr bool present_in(ArrayDims dims, int dimension) {
   X(vx,          "vx",          double,       state,     any,   0.0,           "velocity x (m/s)")        \
   X(vy,          "vy",          double,       state,     any,   0.0,           "velocity y (m/s)")        \
   X(vz,          "vz",          double,       state,     space, 0.0,           "velocity z (m/s)")        \
-  X(theta,       "theta",       double,       state,     any,   0.0,           "rotation angle (rad)")    \
-  X(omega,       "omega",       double,       state,     any,   0.0,           "angular velocity (rad/s)") \
+  X(theta,       "theta",       double,       state,     plane, 0.0,           "rotation angle (rad)")    \
+  X(qw,          "qw",          double,       state,     space, 1.0,           "orientation quaternion w") \
+  X(qx,          "qx",          double,       state,     space, 0.0,           "orientation quaternion x") \
+  X(qy,          "qy",          double,       state,     space, 0.0,           "orientation quaternion y") \
+  X(qz,          "qz",          double,       state,     space, 0.0,           "orientation quaternion z") \
+  X(omega_x,     "omega_x",     double,       state,     space, 0.0,           "angular velocity x (rad/s)") \
+  X(omega_y,     "omega_y",     double,       state,     space, 0.0,           "angular velocity y (rad/s)") \
+  X(omega,       "omega",       double,       state,     any,   0.0,           "angular velocity (about z in space; rad/s)") \
   X(damping_loss, "damping_loss", double,     state,     any,   0.0,           "energy damping took out (J)") \
   X(x0,          "x0",          double,       reference, any,   0.0,           "reference position x (m)") \
   X(y0,          "y0",          double,       reference, any,   0.0,           "reference position y (m)") \
   X(z0,          "z0",          double,       reference, space, 0.0,           "reference position z (m)") \
-  X(half_cos,    "half_cos",    double,       work,      any,   1.0,           "cos(theta/2)")            \
-  X(half_sin,    "half_sin",    double,       work,      any,   0.0,           "sin(theta/2)")            \
+  X(half_cos,    "half_cos",    double,       work,      plane, 1.0,           "cos(theta/2)")            \
+  X(half_sin,    "half_sin",    double,       work,      plane, 0.0,           "sin(theta/2)")            \
   X(strain,      "strain",      double,       work,      any,   0.0,           "volumetric strain")       \
   X(pressure,    "pressure",    double,       work,      any,   0.0,           "pressure (Pa)")           \
   X(fx,          "fx",          double,       work,      any,   0.0,           "force x (N; in 2D over the depth)") \
   X(fy,          "fy",          double,       work,      any,   0.0,           "force y (N; in 2D over the depth)") \
   X(fz,          "fz",          double,       work,      space, 0.0,           "force z (N)")             \
-  X(torque,      "torque",      double,       work,      any,   0.0,           "torque (N m)")            \
+  X(torque_x,    "torque_x",    double,       work,      space, 0.0,           "torque x (N m)")          \
+  X(torque_y,    "torque_y",    double,       work,      space, 0.0,           "torque y (N m)")          \
+  X(torque,      "torque",      double,       work,      any,   0.0,           "torque (about z in space; N m)") \
   X(inv_mass,    "inv_mass",    double,       constant,  any,   0.0,           "1 / mass (1/kg)")         \
   X(inv_inertia, "inv_inertia", double,       constant,  any,   0.0,           "1 / moment of inertia (1/(kg m^2))") \
   X(lambda,      "lambda",      double,       constant,  any,   0.0,           "Lame lambda of the material (Pa)") \
@@ -72,7 +81,7 @@ inline constexpr bool present_in(ArrayDims dims, int dimension) {
 
 struct ParticleStore {
   // 2 (plane strain) or 3; set before resize. An array of the other
-  // dimension only (z in 2D) stays empty.
+  // dimension only (z in 2D, theta in 3D) stays empty.
   int dimension = 2;
 #define MPSOLID_DECLARE_ARRAY(member, name, type, role, dims, initial, what) \
   std::vector<type> member;

@@ -90,7 +90,9 @@ class ZeroCopyViews(unittest.TestCase):
         self.assertEqual(sim.kinds.dtype, np.int8)
         with self.assertRaises(ValueError):
             sim.x[0] = 1.0
-        self.assertLessEqual({"z", "vz", "z0", "fz"}, set(mpsolid.SPACE_ONLY_ARRAYS))
+        self.assertLessEqual({"z", "vz", "z0", "fz", "qw", "omega_x"},
+                             set(mpsolid.SPACE_ONLY_ARRAYS))
+        self.assertLessEqual({"theta", "half_cos"}, set(mpsolid.PLANE_ONLY_ARRAYS))
         for name in mpsolid.SPACE_ONLY_ARRAYS:
             with self.assertRaisesRegex(AttributeError, f"2D simulation has no {name}"):
                 getattr(sim, name)

@@ -81,8 +81,10 @@ void jiggle(ParticleStore& p, double l0, unsigned seed, double angle) {
   for (std::size_t i = p.moving().begin; i < p.size(); ++i) {
     p.x[i] += 0.05 * l0 * n(rng);
     p.y[i] += 0.05 * l0 * n(rng);
-    if (p.dimension == 3) p.z[i] += 0.05 * l0 * n(rng);
-    p.theta[i] = angle + 0.05 * n(rng);
+    if (p.dimension == 3)
+      p.z[i] += 0.05 * l0 * n(rng);
+    else
+      p.theta[i] = angle + 0.05 * n(rng);
   }
 }
 

@@ -43,8 +43,8 @@ void run_model_passes(ParticleStore& p, const BondTable& bonds) {
 }
 
 // Moves every moving particle by 5 % of l0 at random (normal, seeded) in x
-// and y (and z in space), and turns it by `angle` plus 5 % noise: a
-// deformed, rotated state.
+// and y (and z in space), and in the plane turns it by `angle` plus 5 %
+// noise: a deformed, rotated state.
 void jiggle(ParticleStore& p, double l0, unsigned seed, double angle);
 
 // A 3D box of nx x ny x nz elastic particles at spacing l0 (its corner at

@@ -71,15 +71,16 @@ TEST(ParticleTable, NamesAreUnique) {
 }
 
 // The plane store's arrays, in order, are the ones files and checkpoints
-// have always listed; space adds the third component of each vector.
-TEST(ParticleTable, ThePlaneRowsAreTheSpaceRowsWithoutTheThirdComponents) {
+// have always listed; space adds the third component of each vector and
+// turns the angle into a quaternion.
+TEST(ParticleTable, ThePlaneAndTheSpaceStateRows) {
   std::vector<std::string> plane, space;
   for (const StateArray& a : state_arrays(2)) plane.push_back(a.name);
   for (const StateArray& a : state_arrays(3)) space.push_back(a.name);
   EXPECT_EQ(plane,
             (std::vector<std::string>{"x", "y", "vx", "vy", "theta", "omega", "damping_loss"}));
-  EXPECT_EQ(space, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "theta", "omega",
-                                             "damping_loss"}));
+  EXPECT_EQ(space, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "qw", "qx", "qy",
+                                             "qz", "omega_x", "omega_y", "omega", "damping_loss"}));
 }
 
 TEST(ParticleTable, EveryStateArrayOfASpaceStoreGoesThroughASnapshotAndARanksLayout) {
@@ -108,8 +109,8 @@ TEST(ParticleTable, EveryStateArrayOfASpaceStoreGoesThroughASnapshotAndARanksLay
   EXPECT_EQ(local.dimension, 3);
   for_each_particle_member([&](const auto& info, auto member) {
     const auto& values = local.*member;
-    ASSERT_EQ(values.size(), 3u) << info.name;
-    for (std::size_t k = 0; k < 3; ++k)
+    ASSERT_EQ(values.size(), info.present_in(3) ? 3u : 0u) << info.name;
+    for (std::size_t k = 0; k < values.size(); ++k)
       EXPECT_TRUE(values[k] == (written.*member)[layout.global_of[k]]) << info.name;
   });
 }

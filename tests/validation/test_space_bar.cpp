@@ -77,7 +77,8 @@ double ringing_frequency(double l0, bool confined) {
       std::fill(p.vz.begin(), p.vz.end(), 0.0);
     }
     const double now = end_displacement();
-    if ((before > 0) != (now > 0)) crossings.push_back((k - 1 + before / (before - now)) * dt);
+    if ((before > 0) != (now > 0))
+      crossings.push_back((static_cast<double>(k - 1) + before / (before - now)) * dt);
     before = now;
   }
   EXPECT_GE(crossings.size(), 4u);
