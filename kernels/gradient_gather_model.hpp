@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "kernels/bond_math.hpp"
+#include "kernels/bond_shells.hpp"
 #include "kernels/hourglass_options.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
@@ -80,7 +81,10 @@ class GradientGatherModel {
   // from their owners).
   GradientGatherModel(const ParticleStore& p, const BondTable& bonds, const OptionValues& options,
                       Range whole_rows)
-      : volume_(bonds.geometry.volume), re_(bonds.geometry.re) {
+      : volume_(bonds.geometry.volume),
+        re_(bonds.geometry.re),
+        shells_(find_bond_shells(p, bonds)) {
+    for (const double len : shells_.length) shell_wl_.push_back(weight_over_square(len * len));
     if (p.dimension != Dim)
       throw std::logic_error(
           fmt::format("{}: a {}D kernel for a {}D store", name, Dim, p.dimension));
@@ -99,7 +103,7 @@ class GradientGatherModel {
       Mat a = Mat::Zero();
       for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
         const Vec r0 = difference(x0, i, bonds.neighbor[b]);
-        a.noalias() += weight_over_square(r0) * r0 * r0.transpose();
+        a.noalias() += weight_over_square(p, i, b, bonds) * r0 * r0.transpose();
       }
       // An interior particle has A = (n0 / Dim) I; neighbours in one plane
       // (one line in 2D) give det A = 0.
@@ -158,7 +162,7 @@ class GradientGatherModel {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       const Vec r0 = difference(x0, i, j);
-      const double wl = weight_over_square(r0);
+      const double wl = weight_over_square(p, i, b, bonds);
       hourglass += stiffness(i, j, wl) * gap(x, i, j, r0).squaredNorm();
     }
     // Each bond is seen from both ends: a quarter of h |g|^2 per end.
@@ -196,9 +200,15 @@ class GradientGatherModel {
     for (int a = 0; a < Dim; ++a) out[a] = x0[a][i];
     return out;
   }
-  double weight_over_square(const Vec& r0) const {
-    const double len2 = r0.squaredNorm();
+  double weight_over_square(double len2) const {
     return bond_math::weight(std::sqrt(len2), re_) / len2;
+  }
+  // wl of entry b of row i: its shell's, or computed off the shells.
+  double weight_over_square(const ParticleStore& p, std::size_t i, std::uint32_t b,
+                            const BondTable& bonds) const {
+    const std::uint8_t shell = shells_.of_entry[b];
+    if (shell != BondShells::kOff) return shell_wl_[shell];
+    return weight_over_square(reference_length2(p, i, bonds.neighbor[b]));
   }
   // h_ij = alpha E_ij V (Dim / n0) wl_ij, E_ij the ends' mean.
   double stiffness(std::size_t i, std::size_t j, double wl) const {
@@ -219,7 +229,7 @@ class GradientGatherModel {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       const Vec r0 = difference(x0, i, j);
-      g.noalias() += (weight_over_square(r0) * difference(x, i, j)) * r0.transpose();
+      g.noalias() += (weight_over_square(p, i, b, bonds) * difference(x, i, j)) * r0.transpose();
     }
     const Mat f = g * a_inv_[i];
     const double jac = f.determinant();
@@ -238,7 +248,7 @@ class GradientGatherModel {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       const Vec r0 = difference(x0, i, j);
-      const double h = stiffness(i, j, weight_over_square(r0));
+      const double h = stiffness(i, j, weight_over_square(p, i, b, bonds));
       q.noalias() += (-0.5 * h * gap(x, i, j, r0)) * r0.transpose();
     }
     stress_a_[i] += q * a_inv_[i];
@@ -251,7 +261,7 @@ class GradientGatherModel {
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
       const Vec r0 = difference(x0, i, j);
-      const double wl = weight_over_square(r0);
+      const double wl = weight_over_square(p, i, b, bonds);
       f.noalias() += wl * ((stress_a_[i] + stress_a_[j]) * r0);
       f.noalias() += stiffness(i, j, wl) * gap(x, i, j, r0);
     }
@@ -262,7 +272,9 @@ class GradientGatherModel {
   }
 
   double volume_, re_;
-  double penalty_ = 0;  // alpha V Dim / n0: h_ij over E_ij wl_ij
+  BondShells shells_;
+  std::vector<double> shell_wl_;  // wl of each shell
+  double penalty_ = 0;            // alpha V Dim / n0: h_ij over E_ij wl_ij
   bool consistent_hourglass_ = false;
   std::vector<Mat> a_inv_, def_grad_;  // A_i^-1, F_i
   std::vector<Mat> stress_a_;          // (S_i + Q_i) A_i^-1

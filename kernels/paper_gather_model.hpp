@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "kernels/bond_math.hpp"
+#include "kernels/bond_shells.hpp"
 #include "kernels/model_common.hpp"
 #include "src/core/bonds.hpp"
 #include "src/core/option_table.hpp"
@@ -66,7 +67,9 @@ class PaperGatherModel {
   PaperGatherModel(const ParticleStore& p, const BondTable& bonds, const OptionValues&, Range)
       : volume_(bonds.geometry.volume),
         re_(bonds.geometry.re),
-        d_over_n0_(3.0 / number_density(bonds)) {
+        d_over_n0_(3.0 / number_density(bonds)),
+        shells_(find_bond_shells(p, bonds)) {
+    for (const double len : shells_.length) shell_w0_.push_back(bond_math::weight(len, re_));
     if (p.dimension != 3)
       throw std::logic_error(fmt::format("{}: a 3D kernel for a {}D store", name, p.dimension));
   }
@@ -103,7 +106,7 @@ class PaperGatherModel {
                                 std::size_t i) const {
     double bond_energy = 0.0;
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const Bond k = bond(p, i, bonds.neighbor[b]);
+      const Bond k = bond(p, i, bonds.neighbor[b], b);
       bond_energy += spring(p, i, bonds.neighbor[b], k) * k.u.squaredNorm();
     }
     return 0.25 * bond_energy + 0.5 * p.lambda[i] * volume_ * p.strain[i] * p.strain[i];
@@ -118,7 +121,7 @@ class PaperGatherModel {
     r.value = 1.0;
     for (std::size_t i = range.begin; i < range.end; ++i)
       for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const Bond k = bond(p, i, bonds.neighbor[b]);
+        const Bond k = bond(p, i, bonds.neighbor[b], b);
         const Vec turned = k.r - k.u;  // R_ij r0_ij
         const double cosine = k.r.dot(turned) / (k.length * k.r0_length);
         if (cosine < r.value) {
@@ -144,15 +147,21 @@ class PaperGatherModel {
   static Eigen::Quaterniond orientation(const ParticleStore& p, std::size_t i) {
     return {p.qw[i], p.qx[i], p.qy[i], p.qz[i]};
   }
-  Bond bond(const ParticleStore& p, std::size_t i, std::size_t j) const {
+  // Entry b of row i, j its partner.
+  Bond bond(const ParticleStore& p, std::size_t i, std::size_t j, std::uint32_t b) const {
     Bond k;
     const Vec r0 =
         at(p.x0.data(), p.y0.data(), p.z0.data(), j) - at(p.x0.data(), p.y0.data(), p.z0.data(), i);
     k.r = at(p.x.data(), p.y.data(), p.z.data(), j) - at(p.x.data(), p.y.data(), p.z.data(), i);
     k.u = k.r - mean_rotation(orientation(p, i), orientation(p, j)) * r0;
     k.length = k.r.norm();
-    k.r0_length = r0.norm();
-    k.w0 = bond_math::weight(k.r0_length, re_);
+    if (const std::uint8_t shell = shells_.of_entry[b]; shell != BondShells::kOff) {
+      k.r0_length = shells_.length[shell];
+      k.w0 = shell_w0_[shell];
+    } else {
+      k.r0_length = std::sqrt(reference_length2(p, i, j));
+      k.w0 = bond_math::weight(k.r0_length, re_);
+    }
     return k;
   }
   // k_ij, mu_ij the ends' mean.
@@ -164,7 +173,7 @@ class PaperGatherModel {
   void gather_strain(ParticleStore& p, const BondTable& bonds, std::size_t i) const {
     double sum = 0.0;
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const Bond k = bond(p, i, bonds.neighbor[b]);
+      const Bond k = bond(p, i, bonds.neighbor[b], b);
       sum += k.w0 * (k.u.dot(k.r) / k.length) / k.r0_length;
     }
     p.strain[i] = d_over_n0_ * sum;
@@ -175,7 +184,7 @@ class PaperGatherModel {
     Vec f = Vec::Zero(), torque = Vec::Zero();
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
       const std::size_t j = bonds.neighbor[b];
-      const Bond k = bond(p, i, j);
+      const Bond k = bond(p, i, j, b);
       const double spring_ij = spring(p, i, j, k);
       const double c =
           volume_ * d_over_n0_ * k.w0 * (p.pressure[i] + p.pressure[j]) / (k.r0_length * k.length);
@@ -197,6 +206,8 @@ class PaperGatherModel {
   }
 
   double volume_, re_, d_over_n0_;
+  BondShells shells_;
+  std::vector<double> shell_w0_;  // w0 of each shell
 };
 
 }  // namespace mpsolid

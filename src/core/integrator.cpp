@@ -61,30 +61,45 @@ void drift_rotation_in_space(ParticleStore& p, Range range, double dt) {
     p.qz[i] = q.z();
   }
 }
-}  // namespace
 
-void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
+// In space: the third axis, the spin vector and the quaternion. (Kept apart
+// from the plane's loops, which stay as they were.)
+void kick_in_space(ParticleStore& p, Range range, double dt, bool with_rotation) {
+  for (std::size_t i = range.begin; i < range.end; ++i) {
+    p.vx[i] += dt * p.fx[i] * p.inv_mass[i];
+    p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
+    p.vz[i] += dt * p.fz[i] * p.inv_mass[i];
+    if (!with_rotation) continue;
+    p.omega_x[i] += dt * p.torque_x[i] * p.inv_inertia[i];
+    p.omega_y[i] += dt * p.torque_y[i] * p.inv_inertia[i];
+    p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
+  }
+}
+void kick_drift_in_space(ParticleStore& p, Range range, double dt, bool with_rotation) {
   const std::size_t b = range.begin, n = range.end > b ? range.end - b : 0;
   drift_translation(n, dt, &p.vx[b], &p.vy[b], &p.x[b], &p.y[b], &p.fx[b], &p.fy[b],
                     &p.inv_mass[b]);
-  if (p.dimension == 3) drift_axis(n, dt, &p.vz[b], &p.z[b], &p.fz[b], &p.inv_mass[b]);
-  if (with_rotation && p.dimension == 3)
-    drift_rotation_in_space(p, range, dt);
-  else if (with_rotation)
+  drift_axis(n, dt, &p.vz[b], &p.z[b], &p.fz[b], &p.inv_mass[b]);
+  if (with_rotation) drift_rotation_in_space(p, range, dt);
+}
+}  // namespace
+
+void kick_drift(ParticleStore& p, Range range, double dt, bool with_rotation) {
+  if (p.dimension == 3) return kick_drift_in_space(p, range, dt, with_rotation);
+  const std::size_t b = range.begin, n = range.end > b ? range.end - b : 0;
+  drift_translation(n, dt, &p.vx[b], &p.vy[b], &p.x[b], &p.y[b], &p.fx[b], &p.fy[b],
+                    &p.inv_mass[b]);
+  if (with_rotation)
     drift_rotation(n, dt, &p.omega[b], &p.theta[b], &p.half_cos[b], &p.half_sin[b], &p.torque[b],
                    &p.inv_inertia[b]);
 }
 
 void kick(ParticleStore& p, Range range, double dt, bool with_rotation) {
+  if (p.dimension == 3) return kick_in_space(p, range, dt, with_rotation);
   for (std::size_t i = range.begin; i < range.end; ++i) {
     p.vx[i] += dt * p.fx[i] * p.inv_mass[i];
     p.vy[i] += dt * p.fy[i] * p.inv_mass[i];
-    if (p.dimension == 3) p.vz[i] += dt * p.fz[i] * p.inv_mass[i];
     if (with_rotation) p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
-    if (with_rotation && p.dimension == 3) {
-      p.omega_x[i] += dt * p.torque_x[i] * p.inv_inertia[i];
-      p.omega_y[i] += dt * p.torque_y[i] * p.inv_inertia[i];
-    }
   }
 }
 

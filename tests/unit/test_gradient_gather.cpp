@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "kernels/finite_strain_model.hpp"
 #include "kernels/gradient_gather_model.hpp"
@@ -84,27 +85,64 @@ double strain_energy(const Model& model, const ParticleStore& p, const BondTable
   return e;
 }
 
-TEST(GradientGather, In3DItGivesTheOraclesNumbers) {
-  for (const bool consistent : {true, false}) {
-    SolverState s = deformed_block(6, stretch(), 11);
-    ParticleStore& p = s.particles;
-    NeoHookean3 model(p, s.bonds, hourglass(consistent));
-    model.compute_strain(p, s.bonds, p.all());
-    model.compute_forces(p, s.bonds, p.all());
-    const reference::GradientResultNd<3> o =
-        reference::finite_strain_nd<3>(oracle_state(s), 1.0, consistent);
-    const double scale = testing::max_abs(o.force);
-    ASSERT_GT(scale, 0.0);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const auto c = static_cast<Eigen::Index>(i);
-      ASSERT_LT((model.deformation_gradient(i) - o.def_grad[i]).cwiseAbs().maxCoeff(), 1e-13) << i;
-      ASSERT_NEAR(p.fx[i], o.force(0, c), 1e-12 * scale) << i << " consistent " << consistent;
-      ASSERT_NEAR(p.fy[i], o.force(1, c), 1e-12 * scale) << i;
-      ASSERT_NEAR(p.fz[i], o.force(2, c), 1e-12 * scale) << i;
-      ASSERT_NEAR(p.strain[i], std::log(o.def_grad[i].determinant()), 1e-13) << i;
+// Moves every reference position off the lattice by up to 1e-3 l0 (seeded)
+// and rebuilds the bonds: hundreds of distinct bond lengths.
+void off_lattice(SolverState& s) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-1e-3 * kL0, 1e-3 * kL0);
+  ParticleStore& p = s.particles;
+  for (auto* v : {&p.x0, &p.y0, &p.z0})
+    for (double& c : *v) c += u(rng);
+  s.bonds = build_bonds(p, bond_geometry_3d(kL0));
+}
+
+// One byte per bond entry names its length's shell: four in the cubic
+// lattice (l0 times 1, sqrt 2, sqrt 3, 2), three in the square one, none
+// for a table off the lattice.
+TEST(GradientGather, BondShells) {
+  SolverState s = deformed_block(5, stretch(), 0);
+  const BondShells cubic = find_bond_shells(s.particles, s.bonds);
+  ASSERT_EQ(cubic.length.size(), 4u);
+  ASSERT_EQ(cubic.of_entry.size(), s.bonds.entry_count());
+  for (std::size_t i = 0; i < s.particles.size(); ++i)
+    for (std::uint32_t b = s.bonds.begin(i); b < s.bonds.end(i); ++b) {
+      ASSERT_NE(cubic.of_entry[b], BondShells::kOff);
+      ASSERT_NEAR(cubic.length[cubic.of_entry[b]],
+                  std::sqrt(reference_length2(s.particles, i, s.bonds.neighbor[b])), 1e-15);
     }
-    EXPECT_NEAR(strain_energy(model, p, s.bonds), o.energy, 1e-12 * o.energy);
-  }
+  Simulation sim(testing::rod_case());
+  EXPECT_EQ(find_bond_shells(sim.particles(), sim.state().bonds).length.size(), 3u);
+  off_lattice(s);
+  const BondShells off = find_bond_shells(s.particles, s.bonds);
+  EXPECT_TRUE(off.length.empty());
+  for (const std::uint8_t shell : off.of_entry) ASSERT_EQ(shell, BondShells::kOff);
+}
+
+// With shells (the lattice) and without (off it), the oracle's numbers.
+TEST(GradientGather, In3DItGivesTheOraclesNumbers) {
+  for (const bool consistent : {true, false})
+    for (const bool lattice : {true, false}) {
+      SolverState s = deformed_block(6, stretch(), 11);
+      if (!lattice) off_lattice(s);
+      ParticleStore& p = s.particles;
+      NeoHookean3 model(p, s.bonds, hourglass(consistent));
+      model.compute_strain(p, s.bonds, p.all());
+      model.compute_forces(p, s.bonds, p.all());
+      const reference::GradientResultNd<3> o =
+          reference::finite_strain_nd<3>(oracle_state(s), 1.0, consistent);
+      const double scale = testing::max_abs(o.force);
+      ASSERT_GT(scale, 0.0);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const auto c = static_cast<Eigen::Index>(i);
+        ASSERT_LT((model.deformation_gradient(i) - o.def_grad[i]).cwiseAbs().maxCoeff(), 1e-13)
+            << i;
+        ASSERT_NEAR(p.fx[i], o.force(0, c), 1e-12 * scale) << i << " consistent " << consistent;
+        ASSERT_NEAR(p.fy[i], o.force(1, c), 1e-12 * scale) << i;
+        ASSERT_NEAR(p.fz[i], o.force(2, c), 1e-12 * scale) << i;
+        ASSERT_NEAR(p.strain[i], std::log(o.def_grad[i].determinant()), 1e-13) << i;
+      }
+      EXPECT_NEAR(strain_energy(model, p, s.bonds), o.energy, 1e-12 * o.energy);
+    }
 }
 
 // The 2D instantiation computes the plane slot kernels' forces, strain,

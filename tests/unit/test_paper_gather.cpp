@@ -68,8 +68,19 @@ double strain_energy(Model& model, SolverState& s) {
   return e;
 }
 
-TEST(PaperGather, ItGivesThe3DOraclesNumbers) {
+// On the lattice (bond constants by shell) and off it by up to 1e-3 l0
+// (each bond's constants computed).
+class PaperGatherOracle : public ::testing::TestWithParam<bool> {};
+
+TEST_P(PaperGatherOracle, ItGivesThe3DOraclesNumbers) {
   SolverState s = turned_block(6, 3);
+  if (!GetParam()) {
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u(-1e-3 * kL0, 1e-3 * kL0);
+    for (auto* v : {&s.particles.x0, &s.particles.y0, &s.particles.z0})
+      for (double& c : *v) c += u(rng);
+    s.bonds = build_bonds(s.particles, bond_geometry_3d(kL0));
+  }
   const ParticleStore& p = s.particles;
   Paper3 model(p, s.bonds, {});
   forces_of(model, s);
@@ -107,6 +118,7 @@ TEST(PaperGather, ItGivesThe3DOraclesNumbers) {
     ASSERT_LT((t - r.torque.col(c)).cwiseAbs().maxCoeff(), 1e-12 * t_scale) << i;
   }
 }
+INSTANTIATE_TEST_SUITE_P(OnAndOffTheLattice, PaperGatherOracle, ::testing::Bool());
 
 // The conservative variant: f_i = -dE/dx_i and tau_i = -dE/dphi_i (phi a
 // small turn of particle i about a fixed axis), by central differences,
