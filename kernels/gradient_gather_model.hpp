@@ -44,20 +44,23 @@
 
 namespace mpsolid {
 
+// The first Dim of three coordinate arrays.
+template <int Dim>
+std::array<const double*, Dim> axes(const std::vector<double>& x, const std::vector<double>& y,
+                                    const std::vector<double>& z) {
+  if constexpr (Dim == 2)
+    return {x.data(), y.data()};
+  else
+    return {x.data(), y.data(), z.data()};
+}
 // The store's positions now and at set-up, one array per axis.
 template <int Dim>
 std::array<const double*, Dim> position_arrays(const ParticleStore& p) {
-  if constexpr (Dim == 2)
-    return {p.x.data(), p.y.data()};
-  else
-    return {p.x.data(), p.y.data(), p.z.data()};
+  return axes<Dim>(p.x, p.y, p.z);
 }
 template <int Dim>
 std::array<const double*, Dim> reference_arrays(const ParticleStore& p) {
-  if constexpr (Dim == 2)
-    return {p.x0.data(), p.y0.data()};
-  else
-    return {p.x0.data(), p.y0.data(), p.z0.data()};
+  return axes<Dim>(p.x0, p.y0, p.z0);
 }
 
 template <int Dim, class Law>
