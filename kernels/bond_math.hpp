@@ -11,6 +11,7 @@
 //
 // Every operation is symmetric under i <-> j, so u_ji = -u_ij bit for bit
 // (with -ffp-contract=off).
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "src/core/types.hpp"
@@ -73,6 +74,18 @@ inline BondVectors<T> bond_vectors(T xi, T yi, T xj, T yj, Rotation<T> rot, T r0
 template <class T>
 inline T normal_extension(const BondVectors<T>& b, T inv_length) {
   return (b.ux * b.rx + b.uy * b.ry) * inv_length;
+}
+
+// In space, the pair's mean rotation: the geodesic midpoint of the two
+// orientations, normalize(q_i + s q_j) with s = +-1 making q_i . s q_j >= 0
+// (q and -q are one orientation). Symmetric in i and j (from the other end
+// the same or the negated quaternion: the same rotation, bit for bit); for
+// turns about one axis, the turn by the mean angle (MODEL.md section 10).
+inline Eigen::Quaterniond mean_rotation(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  const double side = a.dot(b) < 0 ? -1.0 : 1.0;
+  Eigen::Quaterniond m;
+  m.coeffs() = a.coeffs() + side * b.coeffs();
+  return m.normalized();
 }
 
 }  // namespace mpsolid::bond_math

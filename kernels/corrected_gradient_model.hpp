@@ -310,10 +310,6 @@ class CorrectedGradientModel {
  private:
   std::size_t particle_count() const { return jacobian_.size(); }
 
-  static double youngs_modulus(double lambda, double mu) {
-    return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
-  }
-
   // Pass 1: G_i = sum over its bonds of wl_ij r_ij (x) r0_ij in CSR order;
   // F_i = G_i A_i^-1, J_i, the law's stress and S_i A_i^-1. Each term is
   // computed as the bond's owner (its lower end) sees it, r from the owner

@@ -143,9 +143,10 @@ class GradientGatherModel {
     });
     halo.post("deformation gradient", {matrix_field(def_grad_)});
     halo.finish();
-    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) gather_hourglass_stress(p, bonds, i);
-    });
+    if (consistent_hourglass_)
+      parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) gather_hourglass_stress(p, bonds, i);
+      });
     halo.post("stress", {matrix_field(stress_a_)});  // the step finishes it
   }
 
@@ -179,20 +180,12 @@ class GradientGatherModel {
     return jacobian_integrity(jacobian_, limits, range);
   }
 
-  // The last strain pass's F_i and J_i, and the law's stress P(F_i).
+  // The last strain pass's F_i.
   const Mat& deformation_gradient(std::size_t i) const { return def_grad_[i]; }
-  const std::vector<double>& jacobian() const { return jacobian_; }
-  Mat stress(const ParticleStore& p, std::size_t i) const {
-    double strain = 0, pressure = 0;
-    return Law::piola(def_grad_[i], jacobian_[i], p.lambda[i], p.mu[i], strain, pressure);
-  }
 
  private:
   using Positions = std::array<const double*, Dim>;
 
-  static double youngs_modulus(double lambda, double mu) {
-    return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
-  }
   static Vec difference(const Positions& x, std::size_t i, std::size_t j) {
     Vec d;
     for (int a = 0; a < Dim; ++a) d[a] = x[a][j] - x[a][i];
@@ -244,7 +237,6 @@ class GradientGatherModel {
   }
 
   void gather_hourglass_stress(const ParticleStore& p, const BondTable& bonds, std::size_t i) {
-    if (!consistent_hourglass_) return;
     const auto x = position_arrays<Dim>(p);
     const auto x0 = reference_arrays<Dim>(p);
     Mat q = Mat::Zero();

@@ -50,6 +50,11 @@ inline std::size_t index_of_min(const std::vector<double>& values, Range range) 
   return best;
 }
 
+// Young's modulus of the Lame constants (the hourglass terms' E_i).
+inline double youngs_modulus(double lambda, double mu) {
+  return mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
+}
+
 // The corrected-gradient models' check: the smallest J_i among the
 // particles of a range, failed at or below the limit (a collapsed
 // neighbourhood).

@@ -40,14 +40,6 @@
 
 namespace mpsolid {
 
-// The pair's mean rotation normalize(q_i + s q_j), s making q_i . (s q_j) >= 0.
-inline Eigen::Quaterniond mean_rotation(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  const double side = a.dot(b) < 0 ? -1.0 : 1.0;
-  Eigen::Quaterniond m;
-  m.coeffs() = a.coeffs() + side * b.coeffs();
-  return m.normalized();
-}
-
 template <bool EnergyConsistent>
 class PaperGatherModel {
  public:
@@ -153,7 +145,7 @@ class PaperGatherModel {
     const Vec r0 =
         at(p.x0.data(), p.y0.data(), p.z0.data(), j) - at(p.x0.data(), p.y0.data(), p.z0.data(), i);
     k.r = at(p.x.data(), p.y.data(), p.z.data(), j) - at(p.x.data(), p.y.data(), p.z.data(), i);
-    k.u = k.r - mean_rotation(orientation(p, i), orientation(p, j)) * r0;
+    k.u = k.r - bond_math::mean_rotation(orientation(p, i), orientation(p, j)) * r0;
     k.length = k.r.norm();
     if (const std::uint8_t shell = shells_.of_entry[b]; shell != BondShells::kOff) {
       k.r0_length = shells_.length[shell];

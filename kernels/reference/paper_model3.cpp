@@ -1,14 +1,8 @@
 #include "kernels/reference/paper_model3.hpp"
 
-namespace mpsolid::reference {
+#include "kernels/bond_math.hpp"
 
-Eigen::Quaterniond mean_rotation(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  // q and -q are one rotation: add the two on the same side.
-  const double side = a.dot(b) < 0 ? -1.0 : 1.0;
-  Eigen::Quaterniond m;
-  m.coeffs() = a.coeffs() + side * b.coeffs();
-  return m.normalized();
-}
+namespace mpsolid::reference {
 
 PaperResult3 paper_model_3d(const PaperState3& s) {
   const auto n = static_cast<std::size_t>(s.x.cols());
@@ -35,7 +29,7 @@ PaperResult3 paper_model_3d(const PaperState3& s) {
     e.w0 = s.re / e.l0 - 1.0;
     e.rv = s.x.col(cj) - s.x.col(ci);
     e.r = e.rv.norm();
-    e.u = e.rv - mean_rotation(s.q[i], s.q[j]) * r0;  // Eq. 4
+    e.u = e.rv - bond_math::mean_rotation(s.q[i], s.q[j]) * r0;  // Eq. 4
     pairs.push_back(e);
   }
 

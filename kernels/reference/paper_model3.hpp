@@ -33,9 +33,6 @@ struct PaperResult3 {
   Eigen::Matrix3Xd force, torque;  // N, N m per particle
 };
 
-// The bond's mean rotation.
-Eigen::Quaterniond mean_rotation(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
-
 PaperResult3 paper_model_3d(const PaperState3& s);
 
 }  // namespace mpsolid::reference

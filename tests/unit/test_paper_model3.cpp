@@ -26,13 +26,13 @@ using Eigen::Vector3d;
 TEST(PaperModel3, TheMeanRotationIsSymmetricAndTheMeanAngleAboutOneAxis) {
   const Vector3d axis = Vector3d(0.3, -1.0, 0.4).normalized();
   const Quaterniond a(Eigen::AngleAxisd(0.9, axis)), b(Eigen::AngleAxisd(-0.5, axis));
-  const Quaterniond ab = reference::mean_rotation(a, b), ba = reference::mean_rotation(b, a);
+  const Quaterniond ab = bond_math::mean_rotation(a, b), ba = bond_math::mean_rotation(b, a);
   EXPECT_LT(ab.angularDistance(ba), 1e-15);
   EXPECT_LT(ab.angularDistance(Quaterniond(Eigen::AngleAxisd(0.2, axis))), 1e-15);
   // q and -q are one orientation.
   Quaterniond minus_b;
   minus_b.coeffs() = -b.coeffs();
-  EXPECT_LT(reference::mean_rotation(a, minus_b).angularDistance(ab), 1e-15);
+  EXPECT_LT(bond_math::mean_rotation(a, minus_b).angularDistance(ab), 1e-15);
 }
 
 TEST(PaperModel3, APlaneMotionGivesThe2DModel) {
