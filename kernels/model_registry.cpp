@@ -1,5 +1,6 @@
 #include "kernels/model_registry.hpp"
 
+#include <string_view>
 #include <utility>
 
 #include "src/core/types.hpp"
@@ -13,11 +14,31 @@ ModelInfo info_of() {
           Model::rotation_invariant};
 }
 
+template <class Model>
+constexpr int dimension_of() {
+  if constexpr (requires { Model::dimension; })
+    return Model::dimension;
+  else
+    return 2;
+}
+
 template <std::size_t... K>
 std::vector<ModelInfo> catalog_of(std::index_sequence<K...>) {
   static_assert((BondModel<std::variant_alternative_t<K, AnyModel>> && ...));
   return {info_of<std::variant_alternative_t<K, AnyModel>>()...};
 }
+
+// Each space model answers to its plane twin's name with the same options.
+template <std::size_t... K>
+constexpr bool space_twins_match(std::index_sequence<K...>) {
+  return ((std::string_view(std::variant_alternative_t<K, AnyModel>::name) ==
+               std::variant_alternative_t<K + kModelCount, AnyModel>::name &&
+           dimension_of<std::variant_alternative_t<K, AnyModel>>() == 2 &&
+           dimension_of<std::variant_alternative_t<K + kModelCount, AnyModel>>() == 3) &&
+          ...);
+}
+static_assert(std::variant_size_v<AnyModel> == 2 * kModelCount &&
+              space_twins_match(std::make_index_sequence<kModelCount>()));
 
 template <std::size_t K = 0>
 AnyModel make_by_name(const std::string& name, const ParticleStore& p, const BondTable& bonds,
@@ -26,15 +47,15 @@ AnyModel make_by_name(const std::string& name, const ParticleStore& p, const Bon
     throw InputError("unknown model '" + name + "'");
   } else {
     using Model = std::variant_alternative_t<K, AnyModel>;
-    if (name == Model::name) return AnyModel(std::in_place_index<K>, p, bonds, options, whole_rows);
+    if (name == Model::name && p.dimension == dimension_of<Model>())
+      return AnyModel(std::in_place_index<K>, p, bonds, options, whole_rows);
     return make_by_name<K + 1>(name, p, bonds, options, whole_rows);
   }
 }
 }  // namespace
 
 const std::vector<ModelInfo>& model_catalog() {
-  static const std::vector<ModelInfo> catalog =
-      catalog_of(std::make_index_sequence<std::variant_size_v<AnyModel>>());
+  static const std::vector<ModelInfo> catalog = catalog_of(std::make_index_sequence<kModelCount>());
   return catalog;
 }
 

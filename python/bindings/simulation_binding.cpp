@@ -98,7 +98,10 @@ py::dict diagnostics_dict(const Diagnostics& d) {
   out["external_work"] = d.external_work;
   out["momentum_x"] = d.momentum_x;
   out["momentum_y"] = d.momentum_y;
-  out["angular_momentum"] = d.angular_momentum;
+  out["angular_momentum"] = d.angular_momentum;  // about z
+  out["momentum_z"] = d.momentum_z;              // in space; 0 in the plane
+  out["angular_momentum_x"] = d.angular_momentum_x;
+  out["angular_momentum_y"] = d.angular_momentum_y;
   out["max_speed"] = d.max_speed;
   out["damping_loss"] = d.damping_loss;      // 0 without [damping]
   out["contact_energy"] = d.contact_energy;  // 0 without [contact]

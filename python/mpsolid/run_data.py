@@ -25,7 +25,9 @@ class Frame:
     access as a numpy array in id order (`id`, `kind`, `body`, `position`,
     `velocity` (N x 2), `rotation`, `angular_velocity`, `volumetric_strain`,
     `pressure`, `surface` (1 on a body's surface), `normal` (its outward unit
-    normal, N x 2)); with a gas, `gas(field)` on the gas's grid."""
+    normal, N x 2)); in space the vectors are N x 3, `rotation` the rotation
+    vector and `orientation` the quaternion (w, x, y, z; N x 4); with a gas,
+    `gas(field)` on the gas's grid."""
 
     def __init__(self, path, name, step, time, gas_shape=None):
         self._path, self._name = path, name

@@ -22,17 +22,20 @@ std::uint64_t available_memory_bytes() {
 void check_memory(const CaseSpec& spec, int threads, std::uint64_t available) {
   if (available == 0) return;
   const double particles = static_cast<double>(spec.particle_count());
-  const double per_particle = kBytesPerParticle + (threads > 1 ? kPartBytesPerParticle : 0.0);
+  const bool space = spec.dimension == 3;
+  const double per_particle =
+      (space ? kBytesPerParticleInSpace : kBytesPerParticle) +
+      (threads > 1 ? (space ? kPartBytesPerParticleInSpace : kPartBytesPerParticle) : 0.0);
   const double needed = particles * per_particle;
   if (needed <= static_cast<double>(available)) return;
   const double gib = 1024.0 * 1024.0 * 1024.0;
   throw InputError(fmt::format(
       "{}: {:.3g} particles (l0 = {} m) need about {:.3g} GiB at {} thread(s) ({} bytes per "
       "particle, bonds included{}); this machine has {:.3g} GiB available: use a larger l0 "
-      "(memory goes as 1 / l0^2){} or a machine with more memory",
+      "(memory goes as 1 / l0^{}){} or a machine with more memory",
       spec.source, particles, spec.l0, needed / gib, threads, per_particle,
       threads > 1 ? ", the threads' parts too" : "", static_cast<double>(available) / gib,
-      threads > 1 ? ", --threads 1" : ""));
+      spec.dimension, threads > 1 ? ", --threads 1" : ""));
 }
 
 }  // namespace mpsolid

@@ -16,6 +16,12 @@ inline constexpr double kBytesPerParticle = 1650;
 // particles and ghosts, their bonds and its model (src/solver/thread_parts.hpp);
 // measured 1,315 B marginal at 2 threads (bench/memory_rod.py --threads 2).
 inline constexpr double kPartBytesPerParticle = 1500;
+// The same in space (cubic lattice, 32 bond entries per interior particle):
+// measured 1,970 B marginal with finite_strain and 1,577 B with paper at 1
+// thread, and 1,267 B more for the parts at 2 threads (a rubber cube, 0.125
+// to 0.26 M particles, peak resident memory of `mpsolid run`), with some room.
+inline constexpr double kBytesPerParticleInSpace = 2300;
+inline constexpr double kPartBytesPerParticleInSpace = 1500;
 
 // MemAvailable of /proc/meminfo in bytes, or 0 when it cannot be read.
 std::uint64_t available_memory_bytes();

@@ -1,6 +1,7 @@
 #include "src/case/case_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,11 +34,24 @@ Kind parse_kind(TableReader& r, const std::string& key, const std::string& text)
   r.fail(key, fmt::format("unknown kind '{}' (allowed: elastic, rigid, wall)", text));
 }
 
-Hold parse_hold(TableReader& r, const std::string& key, const std::string& text) {
+Hold parse_hold(TableReader& r, const std::string& key, const std::string& text, int dimension) {
   if (text == "none") return Hold::none;
   if (text == "x") return Hold::x;
   if (text == "y") return Hold::y;
-  r.fail(key, fmt::format("unknown hold '{}' (allowed: none, x, y)", text));
+  if (text == "z" && dimension == 3) return Hold::z;
+  r.fail(key, fmt::format("unknown hold '{}' (allowed: none, x, y{})", text,
+                          dimension == 3 ? ", z" : ""));
+}
+
+// A case in space refuses what it cannot run yet, naming the key.
+void refuse_in_space(TableReader& r, const std::string& key, const std::string& what) {
+  r.fail(key, fmt::format("{} is not available in space (dimension = 3) yet", what));
+}
+
+// "[x, y]" or "[x, y, z]": the case's axes, for messages.
+std::string axes_text(int dimension, const char* prefix = "") {
+  return dimension == 3 ? fmt::format("[{0}x, {0}y, {0}z]", prefix)
+                        : fmt::format("[{0}x, {0}y]", prefix);
 }
 
 // Calls each(name, value, reader) for every [SECTION.NAME] entry, in name
@@ -54,6 +68,15 @@ void for_each_named_table(const TomlValue& section, const std::string& section_n
     each(name, value, r);
     r.finish();
   }
+}
+
+// A body's region as a case names it ("rectangle", "box", ...).
+const char* body_kind_text(const BodySpec& b, int dimension) {
+  return dimension == 3 ? region3_kind(b.shape3.region) : region_kind(b.shape.region);
+}
+
+Box3 flat_box(const Box2& b) {
+  return {{b.lo.x, b.lo.y, 0}, {b.hi.x, b.hi.y, 0}};
 }
 
 std::vector<std::string> names_of(const auto& items) {
@@ -132,13 +155,17 @@ void read_prescribed_motion(TableReader& r, BodySpec& b, const std::string& case
   b.kind = Kind::rigid;
 }
 
-void read_body_motion(TableReader& r, BodySpec& b) {
+void read_body_motion(TableReader& r, BodySpec& b, int dimension) {
   const bool wall = b.kind == Kind::wall;
   for (const char* k : {"velocity", "spin", "hold", "bending_mode"})
     if (r.has(k) && wall) r.fail(k, "walls never move: a wall takes no initial motion or hold");
-  r.pair_or("velocity", "the initial velocity [vx, vy] in m/s", b.velocity);
-  b.spin = r.number_or("spin", 0.0);
-  b.hold = parse_hold(r, "hold", r.string_or("hold", "none"));
+  r.numbers_or("velocity", "the initial velocity " + axes_text(dimension, "v") + " in m/s",
+               b.velocity, dimension);
+  if (dimension == 3)
+    r.numbers_or("spin", "the angular velocity [wx, wy, wz] in rad/s", b.spin, 3);
+  else
+    b.spin[2] = r.number_or("spin", 0.0);
+  b.hold = parse_hold(r, "hold", r.string_or("hold", "none"), dimension);
   if (b.kind == Kind::rigid && b.hold != Hold::none)
     r.fail("hold", "a rigid body cannot be held (use a wall for a fixed body, or a motion)");
   if (const TomlValue* table = r.subtable_or_null("bending_mode")) {
@@ -170,36 +197,49 @@ void read_bodies(TableReader& top, CaseSpec& c) {
         b.kind = parse_kind(r, "kind", r.string("kind", "elastic, rigid or wall"));
         b.material =
             index_by_name(r, "material", "the name of a [materials.NAME] table", c.materials);
-        b.shape = read_shape(r, file);
+        const bool space = c.dimension == 3;
+        if (space) {
+          b.shape3 = read_shape3(r, file);
+          if (b.kind == Kind::rigid) refuse_in_space(r, "kind", "a rigid body");
+          if (r.has("motion")) refuse_in_space(r, "motion", "a prescribed motion");
+        } else {
+          b.shape = read_shape(r, file);
+        }
         read_prescribed_motion(r, b, file);
-        read_body_motion(r, b);
+        read_body_motion(r, b, c.dimension);
         // Estimate in floating point first: integer lattice indices would
         // overflow for an absurdly small l0.
-        const Box2 box = b.shape.bounds();
-        const double estimate =
+        const Box3 box = space ? b.shape3.bounds() : flat_box(b.shape.bounds());
+        double estimate =
             ((box.hi.x - box.lo.x) / c.l0 + 1.0) * ((box.hi.y - box.lo.y) / c.l0 + 1.0);
+        if (space) estimate *= (box.hi.z - box.lo.z) / c.l0 + 1.0;
         if (!(estimate < kMaxParticles))
           top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more "
                                      "than this build supports ({} particles)",
                                      c.l0, estimate, name, kMaxParticles));
-        const std::int64_t sites = b.site_count(c.l0);
+        const std::int64_t sites = b.site_count(c.l0, c.dimension);
         if (sites == 0)
           throw InputError(fmt::format(
               "{}: bodies.{}: the body is empty: no lattice site (centre at (k + 1/2) l0, l0 = "
-              "{} m) lies in its {} (bounding box x = [{}, {}], y = [{}, {}]); make it larger "
+              "{} m) lies in its {} (bounding box x = [{}, {}], y = [{}, {}]{}); make it larger "
               "or l0 smaller",
-              origin(value, file), name, c.l0, region_kind(b.shape.region), box.lo.x, box.hi.x,
-              box.lo.y, box.hi.y));
+              origin(value, file), name, c.l0, body_kind_text(b, c.dimension), box.lo.x, box.hi.x,
+              box.lo.y, box.hi.y,
+              space ? fmt::format(", z = [{}, {}]", box.lo.z, box.hi.z) : std::string()));
         particle_total += sites;
         c.bodies.push_back(b);
       });
   for (std::size_t a = 0; a < c.bodies.size(); ++a)
-    for (std::size_t b = a + 1; b < c.bodies.size(); ++b)
-      if (shapes_overlap(c.bodies[a].shape, c.bodies[b].shape))
+    for (std::size_t b = a + 1; b < c.bodies.size(); ++b) {
+      const BodySpec &first = c.bodies[a], &second = c.bodies[b];
+      const bool overlap = c.dimension == 3 ? shapes3_share_site(first.shape3, second.shape3, c.l0)
+                                            : shapes_overlap(first.shape, second.shape);
+      if (overlap)
         throw InputError(fmt::format(
             "{}: bodies.{} ({}) and bodies.{} ({}) overlap; bodies may touch but not overlap", file,
-            c.bodies[a].name, region_kind(c.bodies[a].shape.region), c.bodies[b].name,
-            region_kind(c.bodies[b].shape.region)));
+            first.name, body_kind_text(first, c.dimension), second.name,
+            body_kind_text(second, c.dimension)));
+    }
   if (static_cast<double>(particle_total) >= kMaxParticles)
     top.fail("l0", fmt::format("l0 = {} m gives {} particles, more than this build supports ({} "
                                "particles)",
@@ -209,6 +249,7 @@ void read_bodies(TableReader& top, CaseSpec& c) {
 void read_damping(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("damping");
   if (!table) return;
+  if (c.dimension == 3) refuse_in_space(top, "damping", "[damping]");
   TableReader r(*table, "damping", top.file());
   DampingSpec& d = c.damping;
   d.coefficient = r.number("coefficient", "c in 1/s: the force -c m v on every moving particle");
@@ -223,6 +264,7 @@ void read_damping(TableReader& top, CaseSpec& c) {
 void read_loads(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("loads");
   if (!table) return;
+  if (c.dimension == 3) refuse_in_space(top, "loads", "[loads]");
   for_each_named_table(
       *table, "loads", top.file(), "type, body, force, acceleration or pressure, start",
       [&](const std::string& name, const TomlValue&, TableReader& r) {
@@ -243,14 +285,20 @@ void read_loads(TableReader& top, CaseSpec& c) {
                  fmt::format("'{}' is a wall; walls do not move, so a load on it does nothing",
                              body.name));
         if (l.type == LoadSpec::Type::step) {
-          r.pair("force", "the total force [Fx, Fy] in N (over the depth)", l.force);
+          r.numbers("force",
+                    c.dimension == 3 ? "the total force [Fx, Fy, Fz] in N"
+                                     : "the total force [Fx, Fy] in N (over the depth)",
+                    l.force, c.dimension);
         } else if (l.type == LoadSpec::Type::pressure) {
+          if (c.dimension == 3) refuse_in_space(r, "type", "a pressure load");
           l.pressure = r.number("pressure", "the pressure in Pa (positive pushes inwards)");
           r.range_check("pressure", l.pressure, std::isfinite(l.pressure), "a finite number of Pa");
           l.surface = read_selection(r, body, c.l0);
         } else {
-          r.pair("acceleration", "the acceleration [ax, ay] in m/s^2 of every particle",
-                 l.acceleration);
+          r.numbers(
+              "acceleration",
+              "the acceleration " + axes_text(c.dimension, "a") + " in m/s^2 of every particle",
+              l.acceleration, c.dimension);
         }
         l.start = r.number_or("start", 0.0);
         r.range_check("start", l.start, l.start >= 0, "[0, inf) s");
@@ -263,21 +311,28 @@ void read_probes(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("probes");
   if (!table) return;
   for_each_named_table(
-      *table, "probes", top.file(), "at = [x, y]",
+      *table, "probes", top.file(), c.dimension == 3 ? "at = [x, y, z]" : "at = [x, y]",
       [&](const std::string& name, const TomlValue&, TableReader& r) {
         ProbeSpec probe;
         probe.name = name;
-        r.pair("at", "the initial point [x, y] in m whose nearest particle is followed", probe.at);
+        r.numbers("at",
+                  "the initial point " + axes_text(c.dimension) +
+                      " in m whose nearest particle is followed",
+                  probe.at, c.dimension);
         // A point off every body is a typo, not a request to follow a far
         // particle: some body's site must lie within 1.5 l0 of it.
+        const double reach = 1.5 * c.l0;
         const bool on_a_body =
             std::any_of(c.bodies.begin(), c.bodies.end(), [&](const BodySpec& b) {
-              return shape_has_site_near(b.shape, {probe.at[0], probe.at[1]}, c.l0, 1.5 * c.l0);
+              return c.dimension == 3
+                         ? shape3_has_site_near(b.shape3, {probe.at[0], probe.at[1], probe.at[2]},
+                                                c.l0, reach)
+                         : shape_has_site_near(b.shape, {probe.at[0], probe.at[1]}, c.l0, reach);
             });
         if (!on_a_body)
-          r.fail("at", fmt::format("[{}, {}] is not within l0 = {} m of any body (no particle "
+          r.fail("at", fmt::format("[{}] is not within l0 = {} m of any body (no particle "
                                    "within 1.5 l0)",
-                                   probe.at[0], probe.at[1], c.l0));
+                                   fmt::join(probe.at, probe.at + c.dimension, ", "), c.l0));
         c.probes.push_back(probe);
       });
 }
@@ -392,6 +447,7 @@ void read_stability(TableReader& top, CaseSpec& c) {
 void read_contact(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("contact");
   if (!table) return;
+  if (c.dimension == 3) refuse_in_space(top, "contact", "[contact]");
   TableReader r(*table, "contact", top.file());
   ContactSpec& k = c.contact;
   k.enabled = r.boolean_or("enabled", true);
@@ -462,8 +518,14 @@ CaseSpec build_case(const TomlValue& root, const std::string& file, const std::s
   if (c.name.empty() || c.name.find('/') != std::string::npos)
     top.fail("name", "must be a non-empty name without '/'");
   read_model(top, models, c);
+  const double dimension = top.number_or("dimension", 2);
+  top.range_check("dimension", dimension, dimension == 2 || dimension == 3,
+                  "2 (plane strain) or 3 (space)");
+  c.dimension = static_cast<int>(dimension);
   c.l0 = top.number("l0", "the lattice spacing in m");
   top.range_check("l0", c.l0, c.l0 > 0, "(0, inf) m");
+  if (c.dimension == 3 && top.has("depth"))
+    top.fail("depth", "a body in space (dimension = 3) has its own extent in z: no depth");
   c.depth = top.number_or("depth", 1.0);
   top.range_check("depth", c.depth, c.depth > 0, "(0, inf) m");
   read_materials(top, c);

@@ -44,7 +44,7 @@ std::int64_t CaseSpec::steps_per_history() const {
 
 std::int64_t CaseSpec::particle_count() const {
   std::int64_t n = 0;
-  for (const BodySpec& b : bodies) n += b.site_count(l0);
+  for (const BodySpec& b : bodies) n += b.site_count(l0, dimension);
   return n;
 }
 

@@ -10,6 +10,7 @@
 #include "src/core/material.hpp"
 #include "src/core/option_table.hpp"
 #include "src/core/region.hpp"
+#include "src/core/region3.hpp"
 #include "src/core/rigid_body.hpp"
 #include "src/core/surface.hpp"
 #include "src/core/types.hpp"
@@ -29,17 +30,19 @@ struct BendingMode {
 
 // Velocity components a body's particles are held at zero in (frictionless
 // rollers): for a strip whose sides may not move in y, say.
-enum class Hold : std::int8_t { none = 0, x = 1, y = 2 };
+enum class Hold : std::int8_t { none = 0, x = 1, y = 2, z = 3 };
 
 struct BodySpec {
   std::string name;
   Kind kind = Kind::elastic;
   int material = 0;  // index into CaseSpec::materials
-  Shape shape;       // the region the body fills, less its holes (m)
+  Shape shape;       // in the plane: the region the body fills, less its holes (m)
+  Shape3 shape3;     // in space: the same
   // Initial motion: a uniform velocity, plus a spin (rad/s) about the centroid
-  // of the body's sites, plus (elastic bodies) a bending mode.
-  double velocity[2] = {0, 0};
-  double spin = 0;
+  // of the body's sites, plus (elastic bodies) a bending mode. In the plane
+  // the spin is about z (spin[2]); in space it is the angular velocity vector.
+  double velocity[3] = {0, 0, 0};
+  double spin[3] = {0, 0, 0};
   bool has_mode = false;
   BendingMode mode;
   Hold hold = Hold::none;
@@ -47,14 +50,16 @@ struct BodySpec {
   // wall given a motion is read as such a rigid body).
   PrescribedMotion motion;
   // Lattice sites in the shape at spacing l0 (centres at (k + 1/2) l0).
-  std::int64_t site_count(double l0) const { return count_shape_sites(shape, l0); }
+  std::int64_t site_count(double l0, int dimension) const {
+    return dimension == 3 ? count_shape3_sites(shape3, l0) : count_shape_sites(shape, l0);
+  }
 };
 
 // A named probe: the particle nearest `at` in the initial configuration
 // (lowest id on a tie), recorded in history.csv as probe.NAME.x / .y.
 struct ProbeSpec {
   std::string name;
-  double at[2] = {0, 0};
+  double at[3] = {0, 0, 0};  // z only in space
 };
 
 // A load switched on at `start`: a total force (N over the depth) shared
@@ -65,10 +70,10 @@ struct LoadSpec {
   enum class Type { step, acceleration, pressure };
   std::string name;
   Type type = Type::step;
-  int body = 0;                     // index into CaseSpec::bodies
-  double force[2] = {0, 0};         // step: N
-  double acceleration[2] = {0, 0};  // acceleration: m/s^2
-  double pressure = 0;              // pressure: Pa, on `surface` (positive pushes inwards)
+  int body = 0;                        // index into CaseSpec::bodies
+  double force[3] = {0, 0, 0};         // step: N (z only in space)
+  double acceleration[3] = {0, 0, 0};  // acceleration: m/s^2
+  double pressure = 0;                 // pressure: Pa, on `surface` (positive pushes inwards)
   SurfaceSelection surface;
   double start = 0;
   LoadHistory history;
@@ -166,8 +171,10 @@ struct CaseSpec {
   std::string source;  // the case file it came from
   std::string model = "paper";
   std::string model_section;  // the case section of the model's options ("" if it has none)
-  double l0 = 0;              // lattice spacing (m)
-  double depth = 1.0;         // out-of-plane depth D (m)
+  // 2: plane strain, bodies of depth D; 3: bodies in space, no depth.
+  int dimension = 2;
+  double l0 = 0;       // lattice spacing (m)
+  double depth = 1.0;  // out-of-plane depth D (m); 1 in space, where it enters nothing
   std::vector<Material> materials;
   std::vector<BodySpec> bodies;  // in name order: this fixes the particle ids
   std::vector<LoadSpec> loads;
@@ -202,6 +209,8 @@ struct CaseSpec {
   // and kept in run.json): an end or interval that is not a multiple of dt.
   std::vector<std::string> notes;
 
+  // A particle's volume: l0^2 D in the plane, l0^3 in space.
+  double particle_volume() const { return dimension == 3 ? l0 * l0 * l0 : l0 * l0 * depth; }
   double time_at(std::int64_t step) const { return static_cast<double>(step) * dt; }
   std::int64_t particle_count() const;  // lattice sites of every body
   // About 200 history rows per run, or one every 10 us, whichever is coarser;

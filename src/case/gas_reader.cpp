@@ -198,6 +198,8 @@ double thinnest_width(const Shape& shape) {
 void read_gas(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("gas");
   if (!table) return;
+  if (c.dimension == 3)
+    top.fail("gas", "[gas] is not available in space (dimension = 3) yet: the gas is planar");
   TableReader r(*table, "gas", top.file());
   GasSpec& g = c.gas;
   g.enabled = true;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <toml.hpp>
 
 #include "src/case/case_overrides.hpp"
@@ -22,11 +23,27 @@ std::string key(const std::string& name) {
 }
 
 const char* hold_name(Hold hold) {
-  return hold == Hold::x ? "x" : hold == Hold::y ? "y" : "none";
+  return hold == Hold::x ? "x" : hold == Hold::y ? "y" : hold == Hold::z ? "z" : "none";
 }
 
 std::string pair(double a, double b) {
   return fmt::format("[{}, {}]", format_number(a), format_number(b));
+}
+
+// The first `count` numbers of v as a TOML array.
+std::string numbers(const double* v, int count) {
+  std::vector<std::string> items;
+  for (int k = 0; k < count; ++k) items.push_back(format_number(v[k]));
+  return fmt::format("[{}]", fmt::join(items, ", "));
+}
+
+std::string point3(Point3 p) {
+  const double v[3] = {p.x, p.y, p.z};
+  return numbers(v, 3);
+}
+
+bool any_nonzero(const double* v, int count) {
+  return std::any_of(v, v + count, [](double x) { return x != 0; });
 }
 
 // A region's keys, "key = value" joined by `separator`.
@@ -85,6 +102,44 @@ std::string shape_toml(const Shape& shape) {
   return out + fmt::format("holes = [\n  {},\n]\n", fmt::join(holes, ",\n  "));
 }
 
+// A region of space's keys, as region_keys.
+std::string region3_keys(const Region3& region, const char* separator) {
+  std::vector<std::string> keys;
+  const std::string kind = region3_kind(region);
+  if (kind != "box") keys.push_back(fmt::format("shape = \"{}\"", kind));
+  if (const auto* b = std::get_if<BoxRegion>(&region)) {
+    keys.push_back("x = " + pair(b->x[0], b->x[1]));
+    keys.push_back("y = " + pair(b->y[0], b->y[1]));
+    keys.push_back("z = " + pair(b->z[0], b->z[1]));
+  } else if (const auto* c = std::get_if<CylinderRegion>(&region)) {
+    keys.push_back("base = " + point3(c->base));
+    keys.push_back("top = " + point3(c->top));
+    keys.push_back("radius = " + format_number(c->radius));
+  } else if (const auto* sphere = std::get_if<SphereRegion>(&region)) {
+    keys.push_back("center = " + point3(sphere->center));
+    keys.push_back("radius = " + format_number(sphere->radius));
+  } else if (const auto* e = std::get_if<ExtrusionRegion>(&region)) {
+    std::string section = region_keys(e->section.region, ", ");
+    if (!e->section.holes.empty()) {
+      std::vector<std::string> holes;
+      for (const Region& hole : e->section.holes)
+        holes.push_back("{ " + region_keys(hole, ", ") + " }");
+      section += fmt::format(", holes = [{}]", fmt::join(holes, ", "));
+    }
+    keys.push_back("section = { " + section + " }");
+    keys.push_back("z = " + pair(e->z[0], e->z[1]));
+  }
+  return fmt::format("{}", fmt::join(keys, separator));
+}
+
+std::string shape3_toml(const Shape3& shape) {
+  std::string out = region3_keys(shape.region, "\n") + "\n";
+  if (shape.holes.empty()) return out;
+  std::vector<std::string> holes;
+  for (const Region3& hole : shape.holes) holes.push_back("{ " + region3_keys(hole, ", ") + " }");
+  return out + fmt::format("holes = [\n  {},\n]\n", fmt::join(holes, ",\n  "));
+}
+
 std::string gas_state_toml(const GasStateSpec& s) {
   return fmt::format("density = {}\npressure = {}\nvelocity = {}\n", format_number(s.density),
                      format_number(s.pressure), pair(s.velocity[0], s.velocity[1]));
@@ -123,14 +178,17 @@ std::string gas_toml(const CaseSpec& c) {
 }
 
 std::string body_toml(const CaseSpec& c, const BodySpec& b) {
-  std::string out = fmt::format(
-      "\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\n{}", key(b.name), kind_name(b.kind),
-      quote(c.materials[static_cast<std::size_t>(b.material)].name), shape_toml(b.shape));
+  std::string out =
+      fmt::format("\n[bodies.{}]\nkind = \"{}\"\nmaterial = {}\n{}", key(b.name), kind_name(b.kind),
+                  quote(c.materials[static_cast<std::size_t>(b.material)].name),
+                  c.dimension == 3 ? shape3_toml(b.shape3) : shape_toml(b.shape));
   // Initial motion and holds only where set: walls accept none of them.
-  if (b.velocity[0] != 0 || b.velocity[1] != 0)
-    out += fmt::format("velocity = [{}, {}]\n", format_number(b.velocity[0]),
-                       format_number(b.velocity[1]));
-  if (b.spin != 0) out += fmt::format("spin = {}\n", format_number(b.spin));
+  if (any_nonzero(b.velocity, c.dimension))
+    out += fmt::format("velocity = {}\n", numbers(b.velocity, c.dimension));
+  if (c.dimension == 3 && any_nonzero(b.spin, 3))
+    out += fmt::format("spin = {}\n", numbers(b.spin, 3));
+  if (c.dimension == 2 && b.spin[2] != 0)
+    out += fmt::format("spin = {}\n", format_number(b.spin[2]));
   if (b.hold != Hold::none) out += fmt::format("hold = \"{}\"\n", hold_name(b.hold));
   if (b.motion.on)
     out += fmt::format("\n[bodies.{}.motion]\nvelocity = {}\nspin = {}\nstart = {}\n", key(b.name),
@@ -192,12 +250,16 @@ std::string model_section_toml(const CaseSpec& c) {
 std::string resolved_case_toml(const CaseSpec& c) {
   std::string out = fmt::format(
       "# Resolved by mpsolid from {}.\n# Derived: re = {} m, particle volume V = {} m^3\n",
-      c.source, format_number(2.1 * c.l0), format_number(c.l0 * c.l0 * c.depth));
+      c.source, format_number(2.1 * c.l0), format_number(c.particle_volume()));
   for (const auto& m : c.materials)
     out += fmt::format("# material {}: lambda = {} Pa, mu = {} Pa\n", key(m.name),
                        format_number(m.lambda()), format_number(m.mu()));
-  out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
-                     quote(c.model), format_number(c.l0), format_number(c.depth));
+  if (c.dimension == 3)
+    out += fmt::format("\nname = {}\nmodel = {}\ndimension = 3\nl0 = {}\n", quote(c.name),
+                       quote(c.model), format_number(c.l0));
+  else
+    out += fmt::format("\nname = {}\nmodel = {}\nl0 = {}\ndepth = {}\n", quote(c.name),
+                       quote(c.model), format_number(c.l0), format_number(c.depth));
   for (const auto& m : c.materials)
     out += fmt::format("\n[materials.{}]\nE = {}\nnu = {}\nrho = {}\n", key(m.name),
                        format_number(m.youngs_modulus), format_number(m.poisson_ratio),
@@ -208,9 +270,9 @@ std::string resolved_case_toml(const CaseSpec& c) {
     out += fmt::format("\n[loads.{}]\ntype = \"{}\"\nbody = {}\n", key(l.name), load_type(l.type),
                        quote(body.name));
     if (l.type == LoadSpec::Type::step)
-      out += fmt::format("force = {}\n", pair(l.force[0], l.force[1]));
+      out += fmt::format("force = {}\n", numbers(l.force, c.dimension));
     else if (l.type == LoadSpec::Type::acceleration)
-      out += fmt::format("acceleration = {}\n", pair(l.acceleration[0], l.acceleration[1]));
+      out += fmt::format("acceleration = {}\n", numbers(l.acceleration, c.dimension));
     else
       out += fmt::format("pressure = {}\n", format_number(l.pressure)) +
              selection_toml(l.surface, body);
@@ -222,8 +284,7 @@ std::string resolved_case_toml(const CaseSpec& c) {
                        format_number(c.damping.coefficient), format_number(c.damping.start),
                        format_number(c.damping.end));
   for (const auto& probe : c.probes)
-    out += fmt::format("\n[probes.{}]\nat = [{}, {}]\n", key(probe.name),
-                       format_number(probe.at[0]), format_number(probe.at[1]));
+    out += fmt::format("\n[probes.{}]\nat = {}\n", key(probe.name), numbers(probe.at, c.dimension));
   out += time_toml(c);
   out += fmt::format("\n[output]\nframe_interval = {}\nhistory_interval = {}\n",
                      format_number(c.frame_interval), format_number(c.history_interval));

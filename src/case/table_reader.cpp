@@ -150,12 +150,25 @@ std::string TableReader::choice_or(const std::string& key, const std::vector<std
 }
 
 void TableReader::pair(const std::string& key, const std::string& what, double out[2]) {
+  numbers(key, what, out, 2);
+}
+
+void TableReader::numbers(const std::string& key, const std::string& what, double* out, int count) {
   const TomlValue& v = require(key, what);
-  if (!v.is_array() || v.as_array().size() != 2 || !is_number(v.as_array()[0]) ||
-      !is_number(v.as_array()[1]))
-    fail(key, fmt::format("expected two numbers [a, b] ({}), got {}", what, describe(v)));
-  out[0] = number(v.as_array()[0], key);
-  out[1] = number(v.as_array()[1], key);
+  const auto n = static_cast<std::size_t>(count);
+  const bool ok = v.is_array() && v.as_array().size() == n &&
+                  std::all_of(v.as_array().begin(), v.as_array().end(),
+                              [](const TomlValue& item) { return is_number(item); });
+  if (!ok)
+    fail(key, fmt::format("expected {} ({}), got {}",
+                          count == 2 ? "two numbers [a, b]" : "three numbers [a, b, c]", what,
+                          describe(v)));
+  for (std::size_t k = 0; k < n; ++k) out[k] = number(v.as_array()[k], key);
+}
+
+void TableReader::numbers_or(const std::string& key, const std::string& what, double* out,
+                             int count) {
+  if (has(key)) numbers(key, what, out, count);
 }
 
 void TableReader::pair_or(const std::string& key, const std::string& what, double out[2]) {

@@ -47,6 +47,10 @@ class TableReader {
   // [a, b] with two numbers; pair_or leaves `out` as it is when absent.
   void pair(const std::string& key, const std::string& what, double out[2]);
   void pair_or(const std::string& key, const std::string& what, double out[2]);
+  // [a, b] or [a, b, c]: `count` (2 or 3) numbers, one per axis of the case's
+  // dimension; numbers_or leaves `out` as it is when absent.
+  void numbers(const std::string& key, const std::string& what, double* out, int count);
+  void numbers_or(const std::string& key, const std::string& what, double* out, int count);
   const TomlValue& subtable(const std::string& key, const std::string& what);
   const TomlValue* subtable_or_null(const std::string& key);
 

@@ -33,7 +33,10 @@ struct Diagnostics {
   double external_work = 0;
   double damping_loss = 0;  // the energy damping took out (0 without [damping])
   double momentum_x = 0, momentum_y = 0;
+  double momentum_z = 0;  // 0 in the plane
+  // About the origin, spins included: about z, and in space about x and y.
   double angular_momentum = 0;
+  double angular_momentum_x = 0, angular_momentum_y = 0;
   double max_speed = 0;
   GasFigures gas;  // zeros without a gas
 };

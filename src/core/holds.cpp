@@ -10,6 +10,7 @@ void clear_held_forces(ParticleStore& p, const std::vector<HeldRange>& holds, Ra
     for (std::size_t i = std::max(h.range.begin, block.begin); i < end; ++i) {
       if (h.x) p.fx[i] = 0.0;
       if (h.y) p.fy[i] = 0.0;
+      if (h.z) p.fz[i] = 0.0;
     }
   }
 }

@@ -10,7 +10,7 @@ namespace mpsolid {
 
 struct HeldRange {
   Range range;
-  bool x = false, y = false;
+  bool x = false, y = false, z = false;  // z only in space
 };
 
 // Clears the held components of the particles of `block` (serially: it is

@@ -159,4 +159,29 @@ std::int64_t count_shape3_sites(const Shape3& shape, double l0) {
   return n;
 }
 
+bool shape3_has_site_near(const Shape3& shape, Point3 p, double l0, double distance) {
+  const LatticeSpan kx = lattice_span(p.x - distance, p.x + distance, l0);
+  const LatticeSpan ky = lattice_span(p.y - distance, p.y + distance, l0);
+  const LatticeSpan kz = lattice_span(p.z - distance, p.z + distance, l0);
+  for (std::int64_t n = kz.first; n <= kz.last; ++n)
+    for (std::int64_t m = ky.first; m <= ky.last; ++m)
+      for (std::int64_t k = kx.first; k <= kx.last; ++k) {
+        const Point3 site{lattice_coordinate(k, l0), lattice_coordinate(m, l0),
+                          lattice_coordinate(n, l0)};
+        const Point3 d = minus(site, p);
+        if (dot(d, d) <= distance * distance && shape3_contains(shape, site)) return true;
+      }
+  return false;
+}
+
+bool shapes3_share_site(const Shape3& a, const Shape3& b, double l0) {
+  const Box3 ba = a.bounds(), bb = b.bounds();
+  if (ba.hi.x < bb.lo.x || bb.hi.x < ba.lo.x || ba.hi.y < bb.lo.y || bb.hi.y < ba.lo.y ||
+      ba.hi.z < bb.lo.z || bb.hi.z < ba.lo.z)
+    return false;
+  bool shared = false;
+  for_each_site(a, l0, [&](Point3 p) { shared = shared || shape3_contains(b, p); });
+  return shared;
+}
+
 }  // namespace mpsolid

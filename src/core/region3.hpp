@@ -82,5 +82,10 @@ bool shape3_contains(const Shape3& shape, Point3 p);
 std::vector<Point3> fill_shape3(const Shape3& shape, double l0);
 // How many there would be, without storing them.
 std::int64_t count_shape3_sites(const Shape3& shape, double l0);
+// Whether some lattice site of the shape lies within `distance` of p.
+bool shape3_has_site_near(const Shape3& shape, Point3 p, double l0, double distance);
+// Whether some lattice site of `a` lies inside `b` too (two bodies would put
+// particles on one site): bodies may touch, not overlap.
+bool shapes3_share_site(const Shape3& a, const Shape3& b, double l0);
 
 }  // namespace mpsolid

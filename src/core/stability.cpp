@@ -9,10 +9,18 @@ namespace mpsolid {
 
 StabilityVerdict check_finite(const ParticleStore& p) {
   StabilityVerdict v;
+  const bool space = p.dimension == 3;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.vx[i]) &&
-        std::isfinite(p.vy[i]) && std::isfinite(p.theta[i]) && std::isfinite(p.omega[i]))
-      continue;
+    const bool finite =
+        space
+            ? std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.z[i]) &&
+                  std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) && std::isfinite(p.vz[i]) &&
+                  std::isfinite(p.qw[i]) && std::isfinite(p.qx[i]) && std::isfinite(p.qy[i]) &&
+                  std::isfinite(p.qz[i]) && std::isfinite(p.omega_x[i]) &&
+                  std::isfinite(p.omega_y[i]) && std::isfinite(p.omega[i])
+            : std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.vx[i]) &&
+                  std::isfinite(p.vy[i]) && std::isfinite(p.theta[i]) && std::isfinite(p.omega[i]);
+    if (finite) continue;
     v.ok = false;
     v.criterion = "non-finite state (NaN or Inf in position, velocity or rotation)";
     v.particle = i;
@@ -26,7 +34,8 @@ StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
   const Range r = p.moving();
   double fastest2 = -1.0;
   for (std::size_t i = r.begin; i < r.end; ++i) {
-    const double s2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
+    double s2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
+    if (p.dimension == 3) s2 += p.vz[i] * p.vz[i];
     if (s2 > fastest2) {
       fastest2 = s2;
       v.particle = i;

@@ -132,7 +132,7 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   for (const HeldRange& hold : global.holds) {
     const Range mine = layout.owned_global;
     const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};
-    if (part.begin < part.end) s.holds.push_back({to_local(part, layout), hold.x, hold.y});
+    if (part.begin < part.end) s.holds.push_back({to_local(part, layout), hold.x, hold.y, hold.z});
   }
   // Every candidate of the run (the layout must hold them all); the list is
   // the decomposed step's to build.

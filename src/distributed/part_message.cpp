@@ -235,6 +235,7 @@ void pack_local_part(const LocalPart& part,
     o.put(h.range);
     o.put(h.x ? 1.0 : 0.0);
     o.put(h.y ? 1.0 : 0.0);
+    o.put(h.z ? 1.0 : 0.0);
   });
   const ContactState& c = s.contact;
   for (const double v : {c.parameters.distance, c.parameters.stiffness, c.parameters.skin,
@@ -269,6 +270,7 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   geometry.l0 = r.get();
   geometry.re = r.get();
   geometry.volume = r.get();
+  geometry.dimension = s.particles.dimension;
   s.bonds = make_bond_table(s.particles, std::move(offsets), std::move(neighbor), geometry);
   s.rigid_bodies = get_items<RigidBody>(r, get_body);
   s.loads = get_items<StepLoad>(r, get_load);
@@ -277,6 +279,7 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
     h.range = in.get_range();
     h.x = in.get() != 0.0;
     h.y = in.get() != 0.0;
+    h.z = in.get() != 0.0;
     return h;
   });
   ContactState& c = s.contact;

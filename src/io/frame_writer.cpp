@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -13,7 +16,20 @@
 
 namespace mpsolid {
 
-const std::vector<XdmfField>& frame_fields() {
+const std::vector<XdmfField>& frame_fields(int dimension) {
+  static const std::vector<XdmfField> space = {
+      {"id", "Int", 4, 1},
+      {"kind", "Char", 1, 1},
+      {"body", "Int", 4, 1},
+      {"velocity", "Float", 8, 3},
+      {"rotation", "Float", 8, 3},
+      {"angular_velocity", "Float", 8, 3},
+      {"volumetric_strain", "Float", 8, 1},
+      {"pressure", "Float", 8, 1},
+      {"surface", "Char", 1, 1},
+      {"normal", "Float", 8, 3},
+  };
+  if (dimension == 3) return space;
   static const std::vector<XdmfField> fields = {
       {"id", "Int", 4, 1},
       {"kind", "Char", 1, 1},
@@ -50,6 +66,63 @@ std::string frame_group(int index) {
   return fmt::format("{:06d}", index);
 }
 
+// The per-particle vectors of a space frame, in id order: `columns` arrays
+// interleaved, a row per particle.
+std::vector<double> rows_of(const std::vector<std::size_t>& order,
+                            std::initializer_list<const std::vector<double>*> columns) {
+  std::vector<double> out;
+  out.reserve(order.size() * columns.size());
+  for (const std::size_t i : order)
+    for (const std::vector<double>* c : columns) out.push_back((*c)[i]);
+  return out;
+}
+
+// A frame's fields in space. A particle is on the surface where it lacks one
+// of its six nearest neighbours on the lattice; its outward normal is then
+// minus the sum of its bonds' current vectors, normalised.
+void write_space_fields(const SolverState& state, const std::vector<std::size_t>& order,
+                        const h5::Group& group, int level) {
+  const ParticleStore& p = state.particles;
+  const BondTable& bonds = state.bonds;
+  const std::size_t n = p.size();
+  std::vector<double> rx(n, 0.0), ry(n, 0.0), rz(n, 0.0);  // the rotation vector
+  std::vector<double> nx(n, 0.0), ny(n, 0.0), nz(n, 0.0);
+  std::vector<std::int8_t> surface(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::AngleAxisd turn(Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]));
+    const Eigen::Vector3d r = turn.angle() * turn.axis();
+    rx[i] = r.x();
+    ry[i] = r.y();
+    rz[i] = r.z();
+    const double nearest2 = 1.01 * bonds.geometry.l0 * bonds.geometry.l0;
+    int nearest = 0;
+    Eigen::Vector3d now = Eigen::Vector3d::Zero();
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t j = bonds.neighbor[b];
+      const Eigen::Vector3d r0(bonds.r0x[b], bonds.r0y[b], bonds.r0z[b]);
+      nearest += r0.squaredNorm() < nearest2;
+      now += Eigen::Vector3d(p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]);
+    }
+    if (nearest >= 6 || now.norm() == 0) continue;
+    surface[i] = 1;
+    nx[i] = -now.x() / now.norm();
+    ny[i] = -now.y() / now.norm();
+    nz[i] = -now.z() / now.norm();
+  }
+  std::vector<std::int8_t> surface_flag(n);
+  for (std::size_t k = 0; k < n; ++k) surface_flag[k] = surface[order[k]];
+  const auto scalar = [&](const std::vector<double>& field) { return rows_of(order, {&field}); };
+  group.write("position", rows_of(order, {&p.x, &p.y, &p.z}), 3, level);
+  group.write("velocity", rows_of(order, {&p.vx, &p.vy, &p.vz}), 3, level);
+  group.write("orientation", rows_of(order, {&p.qw, &p.qx, &p.qy, &p.qz}), 4, level);
+  group.write("rotation", rows_of(order, {&rx, &ry, &rz}), 3, level);
+  group.write("angular_velocity", rows_of(order, {&p.omega_x, &p.omega_y, &p.omega}), 3, level);
+  group.write("volumetric_strain", scalar(p.strain), 1, level);
+  group.write("pressure", scalar(p.pressure), 1, level);
+  group.write("surface", surface_flag, 1, level);
+  group.write("normal", rows_of(order, {&nx, &ny, &nz}), 3, level);
+}
+
 std::filesystem::path sidecar_path(const std::filesystem::path& path) {
   return path.parent_path() / (path.stem().string() + ".xdmf");
 }
@@ -60,7 +133,8 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& s
     : path_(path),
       file_(std::make_unique<File>()),
       compression_(spec.compression),
-      particles_(state.particles.size()) {
+      particles_(state.particles.size()),
+      dimension_(spec.dimension) {
   file_->file = h5::File::create(staging_path(path));
   file_->frames = file_->file.create_group("frames");
   file_->storage_of_id = state.particles.storage_of_id();
@@ -69,7 +143,10 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& s
   file_->file.write_strings("body_names", bodies);
   file_->file.write_strings("kind_names", {"wall", "elastic", "rigid"});
   file_->file.set_attribute<double>("l0", spec.l0);
-  file_->file.set_attribute<double>("depth", spec.depth);
+  if (spec.dimension == 3)
+    file_->file.set_attribute<std::int64_t>("dimension", 3);
+  else
+    file_->file.set_attribute<double>("depth", spec.depth);
   file_->file.set_attribute<std::int64_t>("particles", static_cast<std::int64_t>(particles_));
   file_->file.set_attribute<std::uint64_t>("run_id", run_id);
 }
@@ -79,7 +156,8 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& s
     : path_(path),
       file_(std::make_unique<File>()),
       compression_(spec.compression),
-      particles_(state.particles.size()) {
+      particles_(state.particles.size()),
+      dimension_(spec.dimension) {
   const std::filesystem::path staged = staging_path(path);
   if (!std::filesystem::exists(path))
     throw InputError(
@@ -162,6 +240,15 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const Ga
     body[k] = p.body[order[k]];
     kind[k] = static_cast<std::int8_t>(p.kind[order[k]]);
   }
+  if (p.dimension == 3) {
+    group.write("id", id, 1, compression_);
+    group.write("kind", kind, 1, compression_);
+    group.write("body", body, 1, compression_);
+    write_space_fields(state, order, group, compression_);
+    file_->file.flush();
+    frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
+    return;
+  }
   // The surfaces' particles and their outward normals in the current state.
   if (!surfaces_built_) {
     for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -227,9 +314,10 @@ std::uintmax_t FrameWriter::bytes_written() const {
 }
 
 void FrameWriter::write_sidecar() const {
-  write_file_atomically(sidecar_path(path_),
-                        xdmf_document(path_.filename().string(), particles_, frames_,
-                                      frame_fields(), gas_grid_, gas_frame_fields()));
+  write_file_atomically(
+      sidecar_path(path_),
+      xdmf_document(path_.filename().string(), particles_, frames_, frame_fields(dimension_),
+                    gas_grid_, gas_frame_fields(), dimension_));
 }
 
 void FrameWriter::publish_copy() {

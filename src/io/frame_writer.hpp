@@ -55,11 +55,15 @@ class FrameWriter {
   int first_frame_ = 0;
   int compression_ = 0;
   std::size_t particles_ = 0;
+  int dimension_ = 2;
   std::uintmax_t start_bytes_ = 0, published_bytes_ = 0;
 };
 
-// The datasets of a frame besides `position`, as the XDMF sidecar lists them.
-const std::vector<XdmfField>& frame_fields();
+// The datasets of a frame besides `position`, as the XDMF sidecar lists them,
+// for a case of `dimension` 2 or 3 (in space, vectors have three components,
+// `rotation` is the rotation vector (axis times angle) and the quaternion
+// `orientation` (w, x, y, z) is in the frame but not the sidecar).
+const std::vector<XdmfField>& frame_fields(int dimension = 2);
 // A frame's gas datasets (cell-centred, row by row), named gas_ + the field.
 const std::vector<XdmfField>& gas_frame_fields();
 

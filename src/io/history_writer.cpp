@@ -11,21 +11,39 @@
 namespace mpsolid {
 
 std::vector<std::string> history_columns(const SolverState& state, const CaseSpec& spec) {
-  std::vector<std::string> cols = {
-      "t",          "kinetic_energy", "strain_energy",    "external_work",
-      "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
+  const bool space = spec.dimension == 3;
+  // In space the momenta are vectors.
+  std::vector<std::string> cols =
+      space ? std::vector<std::string>{"t",
+                                       "kinetic_energy",
+                                       "strain_energy",
+                                       "external_work",
+                                       "momentum_x",
+                                       "momentum_y",
+                                       "momentum_z",
+                                       "angular_momentum_x",
+                                       "angular_momentum_y",
+                                       "angular_momentum_z",
+                                       "max_speed"}
+            : std::vector<std::string>{
+                  "t",          "kinetic_energy", "strain_energy",    "external_work",
+                  "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
   if (spec.damping.coefficient > 0) cols.push_back("damping_loss");
   if (state.contact.enabled()) cols.insert(cols.end(), {"contact_energy", "contact_min_distance"});
   for (const RigidBody& b : state.rigid_bodies) {
     for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
     if (b.motion.on) cols.push_back(b.name + ".work");  // its driver's
   }
+  const std::vector<const char*> extent =
+      space ? std::vector<const char*>{".xmin", ".xmax", ".ymin", ".ymax", ".zmin", ".zmax"}
+            : std::vector<const char*>{".xmin", ".xmax", ".ymin", ".ymax"};
+  const std::vector<const char*> axes =
+      space ? std::vector<const char*>{".x", ".y", ".z"} : std::vector<const char*>{".x", ".y"};
   for (const BodySpec& b : spec.bodies)
     if (b.kind == Kind::elastic)
-      for (const char* suffix : {".xmin", ".xmax", ".ymin", ".ymax"})
-        cols.push_back(b.name + suffix);
+      for (const char* suffix : extent) cols.push_back(b.name + suffix);
   for (const ProbeSpec& probe : spec.probes)
-    for (const char* suffix : {".x", ".y"}) cols.push_back("probe." + probe.name + suffix);
+    for (const char* suffix : axes) cols.push_back("probe." + probe.name + suffix);
   // A varying load's or a pressure's factor (of the step that ran last) and its work.
   for (const StepLoad& l : state.loads)
     if (!l.history.constant() || l.is_pressure())
@@ -43,9 +61,22 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
 
 std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
                                 const Diagnostics& d) {
-  std::vector<double> row = {spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
-                             d.external_work,          d.momentum_x,     d.momentum_y,
-                             d.angular_momentum,       d.max_speed};
+  const bool space = spec.dimension == 3;
+  std::vector<double> row =
+      space ? std::vector<double>{spec.time_at(state.step),
+                                  d.kinetic_energy,
+                                  d.strain_energy,
+                                  d.external_work,
+                                  d.momentum_x,
+                                  d.momentum_y,
+                                  d.momentum_z,
+                                  d.angular_momentum_x,
+                                  d.angular_momentum_y,
+                                  d.angular_momentum,
+                                  d.max_speed}
+            : std::vector<double>{spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
+                                  d.external_work,          d.momentum_x,     d.momentum_y,
+                                  d.angular_momentum,       d.max_speed};
   if (spec.damping.coefficient > 0) row.push_back(d.damping_loss);
   if (state.contact.enabled()) row.insert(row.end(), {d.contact_energy, d.contact_min_distance});
   for (const RigidBody& b : state.rigid_bodies) {
@@ -61,8 +92,15 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
     const auto [xmin, xmax] = std::minmax_element(p.x.begin() + r.begin, p.x.begin() + r.end);
     const auto [ymin, ymax] = std::minmax_element(p.y.begin() + r.begin, p.y.begin() + r.end);
     row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
+    if (space) {
+      const auto [zmin, zmax] = std::minmax_element(p.z.begin() + r.begin, p.z.begin() + r.end);
+      row.insert(row.end(), {*zmin, *zmax});
+    }
   }
-  for (const std::size_t i : state.probes) row.insert(row.end(), {p.x[i], p.y[i]});
+  for (const std::size_t i : state.probes) {
+    row.insert(row.end(), {p.x[i], p.y[i]});
+    if (space) row.push_back(p.z[i]);
+  }
   for (const StepLoad& l : state.loads)
     if (!l.history.constant() || l.is_pressure())
       row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});

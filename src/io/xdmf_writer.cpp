@@ -20,14 +20,14 @@ std::string data_item(const std::string& h5_file, const std::string& group,
 std::string xdmf_document(const std::string& h5_file, std::size_t particles,
                           const std::vector<XdmfFrame>& frames,
                           const std::vector<XdmfField>& fields, const XdmfGasGrid& gas,
-                          const std::vector<XdmfField>& gas_fields) {
+                          const std::vector<XdmfField>& gas_fields, int dimension) {
   std::string out =
       "<?xml version=\"1.0\" ?>\n"
       "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
       "<Xdmf Version=\"2.0\">\n"
       " <Domain>\n"
       "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  const XdmfField position{"position", "Float", 8, 2};
+  const XdmfField position{"position", "Float", 8, dimension};
   for (const XdmfFrame& frame : frames) {
     out += fmt::format("   <Grid Name=\"{}\" GridType=\"Uniform\">\n", frame.group);
     out += fmt::format("    <Time Value=\"{:.17g}\"/>\n", frame.time);
@@ -36,7 +36,8 @@ std::string xdmf_document(const std::string& h5_file, std::size_t particles,
         "NodesPerElement=\"1\"/>\n",
         particles);
     out += fmt::format(
-        "    <Geometry GeometryType=\"XY\">\n     {}\n    </Geometry>\n",
+        "    <Geometry GeometryType=\"{}\">\n     {}\n    </Geometry>\n",
+        dimension == 3 ? "XYZ" : "XY",
         data_item(h5_file, frame.group, "position", std::to_string(particles), position));
     for (const XdmfField& field : fields)
       out += fmt::format(

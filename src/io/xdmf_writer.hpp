@@ -13,7 +13,7 @@ struct XdmfField {
   std::string name;         // dataset name in the frame group
   std::string number_type;  // XDMF NumberType: Float, Int, Char
   int precision = 8;        // bytes per value
-  int components = 1;       // 1 scalar, 2 vector (x, y)
+  int components = 1;       // 1 scalar, 2 or 3 a vector (x, y[, z])
 };
 
 struct XdmfFrame {
@@ -28,12 +28,13 @@ struct XdmfGasGrid {
 };
 
 // The document for `frames` in `h5_file` (a name relative to the XDMF file),
-// `particles` particles each, positions in the dataset `position` (N x 2);
+// `particles` particles each, positions in the dataset `position` (N x 2, or
+// N x 3 for `dimension` 3);
 // with a gas, a second time series of the gas's grid with its cell fields
 // (`gas_fields`, each ny x nx, shown under their names less "gas_").
 std::string xdmf_document(const std::string& h5_file, std::size_t particles,
                           const std::vector<XdmfFrame>& frames,
                           const std::vector<XdmfField>& fields, const XdmfGasGrid& gas = {},
-                          const std::vector<XdmfField>& gas_fields = {});
+                          const std::vector<XdmfField>& gas_fields = {}, int dimension = 2);
 
 }  // namespace mpsolid

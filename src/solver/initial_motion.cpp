@@ -1,8 +1,10 @@
 #include "src/solver/initial_motion.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "src/core/loads.hpp"
+#include "src/core/ordered_sum.hpp"
 
 namespace mpsolid {
 
@@ -16,6 +18,36 @@ double bending_mode_shape(const BendingMode& mode, double x) {
   return f(x - mode.root_x) / f(mode.length);
 }
 
+namespace {
+double centroid_z(const ParticleStore& p, Range r) {
+  const auto [sz] =
+      ordered_sum<1>(r.begin, r.end, [&](std::size_t i) { return std::array<double, 1>{p.z[i]}; });
+  return sz / static_cast<double>(r.size());
+}
+
+// An elastic body's motion in space: v = v0 + w x (x - c), every particle
+// turning at w with the body, plus the bending mode, less the held component.
+void apply_motion_in_space(ParticleStore& p, const BodySpec& body, Range r,
+                           const std::array<double, 3>& c, bool with_rotation) {
+  const double* w = body.spin;
+  for (std::size_t i = r.begin; i < r.end; ++i) {
+    const double dx = p.x[i] - c[0], dy = p.y[i] - c[1], dz = p.z[i] - c[2];
+    p.vx[i] = body.velocity[0] + (w[1] * dz - w[2] * dy);
+    p.vy[i] = body.velocity[1] + (w[2] * dx - w[0] * dz);
+    p.vz[i] = body.velocity[2] + (w[0] * dy - w[1] * dx);
+    if (with_rotation) {
+      p.omega_x[i] = w[0];
+      p.omega_y[i] = w[1];
+      p.omega[i] = w[2];
+    }
+    if (body.has_mode) p.vy[i] += body.mode.tip_velocity * bending_mode_shape(body.mode, p.x[i]);
+    if (body.hold == Hold::x) p.vx[i] = 0.0;
+    if (body.hold == Hold::y) p.vy[i] = 0.0;
+    if (body.hold == Hold::z) p.vz[i] = 0.0;
+  }
+}
+}  // namespace
+
 void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotation) {
   ParticleStore& p = s.particles;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -26,7 +58,7 @@ void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotati
         if (rb.name == body.name) {
           rb.vx = body.velocity[0];
           rb.vy = body.velocity[1];
-          rb.omega = body.spin;
+          rb.omega = body.spin[2];
           place_rigid_particles(p, rb, with_rotation);
         }
       continue;
@@ -34,11 +66,15 @@ void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotati
     if (body.kind != Kind::elastic) continue;
     double cx = 0, cy = 0;
     centroid(p, r, cx, cy);
+    if (p.dimension == 3) {
+      apply_motion_in_space(p, body, r, {cx, cy, centroid_z(p, r)}, with_rotation);
+      continue;
+    }
     for (std::size_t i = r.begin; i < r.end; ++i) {
       // A spin is a rigid rotation: particles turn with the body.
-      p.vx[i] = body.velocity[0] - body.spin * (p.y[i] - cy);
-      p.vy[i] = body.velocity[1] + body.spin * (p.x[i] - cx);
-      if (with_rotation) p.omega[i] = body.spin;
+      p.vx[i] = body.velocity[0] - body.spin[2] * (p.y[i] - cy);
+      p.vy[i] = body.velocity[1] + body.spin[2] * (p.x[i] - cx);
+      if (with_rotation) p.omega[i] = body.spin[2];
       if (body.has_mode) p.vy[i] += body.mode.tip_velocity * bending_mode_shape(body.mode, p.x[i]);
       if (body.hold == Hold::x) p.vx[i] = 0.0;
       if (body.hold == Hold::y) p.vy[i] = 0.0;

@@ -9,13 +9,14 @@
 
 #include "neighbor/bond_search.hpp"
 #include "src/core/region.hpp"
+#include "src/core/region3.hpp"
 #include "src/core/surface.hpp"
 
 namespace mpsolid {
 
 namespace {
 struct NewParticle {
-  double x, y;
+  double x, y, z;
   std::int32_t id, body;
 };
 
@@ -30,12 +31,20 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   auto timer = timers.time(Phase::setup);
   SolverState s;
 
-  // Ids in case order (bodies by name, sites row by row).
+  // Ids in case order (bodies by name, sites row by row, in space layer by
+  // layer).
+  const bool space = spec.dimension == 3;
   std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
   std::int32_t next_id = 0;
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
-    for (const Point2& site : fill_shape(spec.bodies[b].shape, spec.l0))
-      by_body[b].push_back({site.x, site.y, next_id++, static_cast<std::int32_t>(b)});
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const auto body = static_cast<std::int32_t>(b);
+    if (space)
+      for (const Point3& site : fill_shape3(spec.bodies[b].shape3, spec.l0))
+        by_body[b].push_back({site.x, site.y, site.z, next_id++, body});
+    else
+      for (const Point2& site : fill_shape(spec.bodies[b].shape, spec.l0))
+        by_body[b].push_back({site.x, site.y, 0.0, next_id++, body});
+  }
 
   std::vector<std::size_t> order(spec.bodies.size());
   std::iota(order.begin(), order.end(), 0);
@@ -44,18 +53,22 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   });
 
   ParticleStore& p = s.particles;
+  p.dimension = spec.dimension;
   p.resize(static_cast<std::size_t>(next_id));
   s.body_ranges.resize(spec.bodies.size());
   std::size_t next = 0;
   for (std::size_t b : order) {
     const BodySpec& body = spec.bodies[b];
     const Material& mat = spec.materials[static_cast<std::size_t>(body.material)];
-    const double mass = mat.density * spec.l0 * spec.l0 * spec.depth;
-    const double inertia = mass * spec.l0 * spec.l0 / 6.0;  // square particle
+    const double mass = space ? mat.density * spec.l0 * spec.l0 * spec.l0
+                              : mat.density * spec.l0 * spec.l0 * spec.depth;
+    // A square particle's, and a cube's about any axis through its centre.
+    const double inertia = mass * spec.l0 * spec.l0 / 6.0;
     s.body_ranges[b] = {next, next + by_body[b].size()};
     for (const NewParticle& np : by_body[b]) {
       p.x[next] = p.x0[next] = np.x;
       p.y[next] = p.y0[next] = np.y;
+      if (space) p.z[next] = p.z0[next] = np.z;
       p.id[next] = np.id;
       p.body[next] = np.body;
       p.material[next] = body.material;
@@ -71,7 +84,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   {
     auto t = timers.time(Phase::neighbors);
-    s.bonds = build_bonds(p, bond_geometry(spec.l0, spec.depth));
+    s.bonds =
+        build_bonds(p, space ? bond_geometry_3d(spec.l0) : bond_geometry(spec.l0, spec.depth));
   }
 
   for (std::size_t b : order)
@@ -82,8 +96,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none)
-      s.holds.push_back(
-          {s.body_ranges[b], spec.bodies[b].hold == Hold::x, spec.bodies[b].hold == Hold::y});
+      s.holds.push_back({s.body_ranges[b], spec.bodies[b].hold == Hold::x,
+                         spec.bodies[b].hold == Hold::y, spec.bodies[b].hold == Hold::z});
 
   // Probes: the nearest particle to the point, lowest id on a tie.
   for (const ProbeSpec& probe : spec.probes) {
@@ -91,7 +105,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     double best_d2 = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double dx = p.x0[i] - probe.at[0], dy = p.y0[i] - probe.at[1];
-      const double d2 = dx * dx + dy * dy;
+      const double dz = space ? p.z0[i] - probe.at[2] : 0.0;
+      const double d2 = dx * dx + dy * dy + dz * dz;
       if (d2 < best_d2 || (d2 == best_d2 && p.id[i] < p.id[best])) {
         best = i;
         best_d2 = d2;

@@ -38,7 +38,7 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
   schedule_loads(state_, spec_);
   apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
-  energy_floor_ = energy_balance_floor(state_.particles, spec_.l0 * spec_.l0 * spec_.depth);
+  energy_floor_ = energy_balance_floor(state_.particles, spec_.particle_volume());
   if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
   stepper_ = make_stepper(spec_, state_, followers);
   const Diagnostics start = diagnostics();

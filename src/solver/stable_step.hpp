@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "src/core/half_angles.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stable_step_estimate.hpp"
@@ -23,6 +25,37 @@
 namespace mpsolid {
 
 namespace detail {
+// A particle's components in the iteration: its translations, then (models
+// with rotation) its rotations: theta in the plane, a rotation vector in
+// space.
+struct Components {
+  std::size_t translations, rotations;
+  std::size_t count() const { return translations + rotations; }
+};
+inline Components components(const ParticleStore& p, bool rotation) {
+  const std::size_t d = p.dimension == 3 ? 3 : 2;
+  const std::size_t rotations = rotation ? (d == 3 ? 3 : 1) : 0;
+  return {d, rotations};
+}
+
+// Sets `work`'s orientation of particle i to base's turned by `phi` (a
+// rotation vector, rad): theta + phi in the plane, exp(phi / 2) q in space.
+inline void turn(const ParticleStore& base, ParticleStore& work, std::size_t i, const double* phi) {
+  if (base.dimension != 3) {
+    work.theta[i] = base.theta[i] + phi[0];
+    return;
+  }
+  const Eigen::Vector3d v(phi[0], phi[1], phi[2]);
+  const double angle = v.norm();
+  const Eigen::Quaterniond q0(base.qw[i], base.qx[i], base.qy[i], base.qz[i]);
+  const Eigen::Quaterniond q =
+      angle > 0 ? (Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle)) * q0).normalized() : q0;
+  work.qw[i] = q.w();
+  work.qx[i] = q.x();
+  work.qy[i] = q.y();
+  work.qz[i] = q.z();
+}
+
 // y = A u for the mass-weighted stiffness A about the state `base`; `work` is
 // a scratch copy of it.
 template <class Model>
@@ -30,42 +63,54 @@ void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleSt
                              const BondTable& bonds, double l0, const std::vector<double>& u,
                              std::vector<double>& y) {
   constexpr bool rot = Model::uses_rotation;
-  constexpr std::size_t c = rot ? 3 : 2;
+  const Components comp = components(base, rot);
+  const std::size_t c = comp.count(), nt = comp.translations;
   const Range r = base.elastic;
   // Displacements d = M^-1/2 u, scaled so the largest moves l0 * 1e-7: small
   // enough to stay linear, large enough to keep 8 digits of the difference.
   double largest = 0;
   for (std::size_t k = 0; k < r.size(); ++k) {
     const std::size_t i = r.begin + k;
-    largest = std::max({largest, std::abs(u[c * k]) * std::sqrt(base.inv_mass[i]),
-                        std::abs(u[c * k + 1]) * std::sqrt(base.inv_mass[i])});
-    if (rot)
-      largest = std::max(largest, std::abs(u[c * k + 2]) * std::sqrt(base.inv_inertia[i]) * l0);
+    for (std::size_t a = 0; a < nt; ++a)
+      largest = std::max(largest, std::abs(u[c * k + a]) * std::sqrt(base.inv_mass[i]));
+    for (std::size_t a = nt; a < c; ++a)
+      largest = std::max(largest, std::abs(u[c * k + a]) * std::sqrt(base.inv_inertia[i]) * l0);
   }
   const double h = 1e-7 * l0 / largest;
   std::vector<double> forces_plus(c * r.size());
+  std::vector<double>* positions[3] = {&work.x, &work.y, &work.z};
+  const std::vector<double>* base_positions[3] = {&base.x, &base.y, &base.z};
+  const std::vector<double>* forces[3] = {&work.fx, &work.fy, &work.fz};
+  // Torques: theta's in the plane; about x, y, z in space.
+  const std::vector<double>* torques[3] = {&work.torque_x, &work.torque_y, &work.torque};
+  const std::size_t first_torque = comp.rotations == 1 ? 2 : 0;
   for (const double sign : {1.0, -1.0}) {
     for (std::size_t k = 0; k < r.size(); ++k) {
       const std::size_t i = r.begin + k;
-      work.x[i] = base.x[i] + sign * h * u[c * k] * std::sqrt(base.inv_mass[i]);
-      work.y[i] = base.y[i] + sign * h * u[c * k + 1] * std::sqrt(base.inv_mass[i]);
-      if (rot)
-        work.theta[i] = base.theta[i] + sign * h * u[c * k + 2] * std::sqrt(base.inv_inertia[i]);
+      for (std::size_t a = 0; a < nt; ++a)
+        (*positions[a])[i] =
+            (*base_positions[a])[i] + sign * h * u[c * k + a] * std::sqrt(base.inv_mass[i]);
+      if (rot) {
+        double phi[3];
+        for (std::size_t a = 0; a < comp.rotations; ++a)
+          phi[a] = sign * h * u[c * k + nt + a] * std::sqrt(base.inv_inertia[i]);
+        turn(base, work, i, phi);
+      }
     }
     if constexpr (rot) compute_half_angles(work, work.moving());
     model.compute_strain(work, bonds, work.all());
     model.compute_forces(work, bonds, work.moving());
     for (std::size_t k = 0; k < r.size(); ++k) {
       const std::size_t i = r.begin + k;
-      const double f[3] = {work.fx[i], work.fy[i], rot ? work.torque[i] : 0.0};
       for (std::size_t a = 0; a < c; ++a) {
+        const double f = a < nt ? (*forces[a])[i] : (*torques[first_torque + a - nt])[i];
         if (sign > 0) {
-          forces_plus[c * k + a] = f[a];
+          forces_plus[c * k + a] = f;
           continue;
         }
-        const double scale = a < 2 ? std::sqrt(base.inv_mass[i]) : std::sqrt(base.inv_inertia[i]);
+        const double scale = a < nt ? std::sqrt(base.inv_mass[i]) : std::sqrt(base.inv_inertia[i]);
         // K d = -dF/dd, so A u = -M^-1/2 (F(+h d) - F(-h d)) / (2 h).
-        y[c * k + a] = -scale * (forces_plus[c * k + a] - f[a]) / (2.0 * h);
+        y[c * k + a] = -scale * (forces_plus[c * k + a] - f) / (2.0 * h);
       }
     }
   }
@@ -84,8 +129,9 @@ inline double norm(const std::vector<double>& v) {
 template <class Model>
 StableStepEstimate estimate_stable_step(Model& model, const SolverState& s, double l0,
                                         int max_iterations = 2000, double tolerance = 1e-3) {
-  constexpr std::size_t c = Model::uses_rotation ? 3 : 2;
   const ParticleStore& base = s.particles;
+  const detail::Components comp = detail::components(base, Model::uses_rotation);
+  const std::size_t c = comp.count(), nt = comp.translations;
   const Range r = base.elastic;
   StableStepEstimate out;
   if (r.empty()) return out;
@@ -97,12 +143,17 @@ StableStepEstimate estimate_stable_step(Model& model, const SolverState& s, doub
     const std::size_t i = r.begin + k;
     const auto kx = static_cast<std::int64_t>(std::floor(base.x0[i] / l0));
     const auto ky = static_cast<std::int64_t>(std::floor(base.y0[i] / l0));
-    const double sign = ((kx + ky) & 1) ? -1.0 : 1.0;
+    const auto kz =
+        nt == 3 ? static_cast<std::int64_t>(std::floor(base.z0[i] / l0)) : std::int64_t{0};
+    const double sign = ((kx + ky + kz) & 1) ? -1.0 : 1.0;
     const auto hash = static_cast<std::uint32_t>(base.id[i]) * 2654435761u;
     const double jitter = 0.1 * (static_cast<double>(hash >> 8) / 16777216.0 - 0.5);
     u[c * k] = (sign + jitter) / std::sqrt(base.inv_mass[i]);
     u[c * k + 1] = (((kx & 1) ? -sign : sign) - jitter) / std::sqrt(base.inv_mass[i]);
-    if (c == 3) u[c * k + 2] = (sign + jitter) / (l0 * std::sqrt(base.inv_inertia[i]));
+    if (nt == 3) u[c * k + 2] = (((ky & 1) ? -sign : sign) + jitter) / std::sqrt(base.inv_mass[i]);
+    // Rotations: the same pattern, turned about each axis in turn.
+    for (std::size_t a = nt; a < c; ++a)
+      u[c * k + a] = ((a == nt ? sign : -sign) + jitter) / (l0 * std::sqrt(base.inv_inertia[i]));
   }
   // The top of a lattice's spectrum is dense, so the estimate creeps up: it
   // counts as converged when it grew by less than `tolerance` (relative) over

@@ -7,7 +7,8 @@
 #    with the same history.csv, frames and final state as an uninterrupted
 #    run, bit for bit (tests/tools/compare_runs.py);
 #  - a resume can go past the old end: run to T, resume to 2T = run to 2T;
-#    also with contact, stopped mid-collision (cases/colliding_blocks.toml);
+#    also with contact, stopped mid-collision (cases/colliding_blocks.toml),
+#    and in space (cases/spinning_cube.toml, a quaternion per particle);
 #  - a missing, damaged or foreign checkpoint, or a --set that changes the
 #    case, is refused with exit 2 and a clear message, leaving the folder as
 #    it was.
@@ -53,6 +54,20 @@ same_as_reference() {  # same_as_reference LABEL DIR
   else
     fail "$1: differs from the uninterrupted run:"
     sed 's/^/    /' "$TMP/$1.compare" | head -n 12
+  fi
+}
+# resumed_as_reference LABEL WHAT REF DIR: after `mp LABEL_extend resume DIR`
+# ($rc), DIR ends as the uninterrupted run REF, bit for bit.
+resumed_as_reference() {
+  local label=$1 what=$2 ref=$3 dir=$4
+  if [[ $rc -ne 0 ]]; then
+    fail "$label: resume exited $rc"
+    show "${label}_extend"
+  elif $PY "$COMPARE" "$ref" "$dir" >"$TMP/$label.compare" 2>&1; then
+    ok "$label: $what: identical ($(tail -n 1 "$TMP/$label.compare"))"
+  else
+    fail "$label: the resumed run differs from the uninterrupted one:"
+    sed 's/^/    /' "$TMP/$label.compare" | head -n 12
   fi
 }
 snapshot() {
@@ -204,15 +219,21 @@ mp contact_reference run "$CONTACT" "${CSETS[@]}" --set time.end=3e-3 --out "$CR
 CHALF=$TMP/contact_half
 mp contact_half run "$CONTACT" "${CSETS[@]}" --set time.end=1.5e-3 --out "$CHALF" --threads 2
 mp contact_extend resume "$CHALF" --set time.end=3e-3 --threads 1
-if [[ $rc -ne 0 ]]; then
-  fail "contact: resume exited $rc"
-  show contact_extend
-elif $PY "$COMPARE" "$CREF" "$CHALF" >"$TMP/contact.compare" 2>&1; then
-  ok "contact: stopped mid-collision at 2 threads, resumed at 1: identical ($(tail -n 1 "$TMP/contact.compare"))"
-else
-  fail "contact: the resumed run differs from the uninterrupted one:"
-  sed 's/^/    /' "$TMP/contact.compare" | head -n 12
-fi
+resumed_as_reference contact "stopped mid-collision at 2 threads, resumed at 1" "$CREF" "$CHALF"
+
+# ---- in space: a spinning cube with a quaternion per particle -------------------
+
+# The paper model turns each particle's quaternion: stopped at 2 threads,
+# resumed at 1, it ends as the uninterrupted run.
+SPACE=cases/spinning_cube.toml
+SSETS=(--set l0=0.008 --set 'model="paper"' --set output.frame_interval=0.01
+  --set output.history_interval=0.002)
+SREF=$TMP/space_reference
+mp space_reference run "$SPACE" "${SSETS[@]}" --set time.end=0.04 --out "$SREF" --threads 1
+SHALF=$TMP/space_half
+mp space_half run "$SPACE" "${SSETS[@]}" --set time.end=0.02 --out "$SHALF" --threads 2
+mp space_extend resume "$SHALF" --set time.end=0.04 --threads 1
+resumed_as_reference space "stopped at 2 threads, resumed at 1" "$SREF" "$SHALF"
 
 # ---- refusals ---------------------------------------------------------------------
 

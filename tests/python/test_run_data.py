@@ -132,5 +132,63 @@ class ReadFunctions(ShortRun):
         shutil.rmtree(started)
 
 
+class SpaceRun(unittest.TestCase):
+    """A short run in space (cases/spinning_cube.toml, paper model): its frames'
+    vectors have three components and the orientation is a unit quaternion."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.dir = os.path.join(cls.tmp.name, "cube")
+        r = subprocess.run([executable(), "run", os.path.join(ROOT, "cases", "spinning_cube.toml"),
+                            "--out", cls.dir, "--set", "l0=0.008", "--set", 'model="paper"',
+                            "--set", "time.end=0.02", "--set", "output.frame_interval=0.01"],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_frames_hold_vectors_in_space_and_unit_quaternions(self):
+        run = mpsolid.open_run(self.dir)
+        self.assertEqual(run.info["dimension"], 3)
+        last = run.frames[-1]
+        n = 1000
+        for name in ("position", "velocity", "rotation", "angular_velocity", "normal"):
+            self.assertEqual(last[name].shape, (n, 3), name)
+        q = last.orientation
+        self.assertEqual(q.shape, (n, 4))
+        self.assertLess(np.abs(np.linalg.norm(q, axis=1) - 1).max(), 1e-14)
+        # The rotation vector is the quaternion's angle times its axis.
+        angle = 2 * np.arctan2(np.linalg.norm(q[:, 1:], axis=1), q[:, 0])
+        axis = q[:, 1:] / np.linalg.norm(q[:, 1:], axis=1)[:, None]
+        self.assertLess(np.abs(last.rotation - angle[:, None] * axis).max(), 1e-12)
+        # Every particle turned with the body at its spin, about (3, 4, 12) rad/s.
+        w = np.array([3.0, 4.0, 12.0])
+        self.assertLess(np.abs(angle - np.linalg.norm(w) * last.time).max(), 0.01 * angle.max())
+        # A 10^3 cube's surface: all but the 8^3 inside, each with a unit normal.
+        surface = last.surface == 1
+        self.assertEqual(int(surface.sum()), n - 8 ** 3)
+        self.assertLess(np.abs(np.linalg.norm(last.normal[surface], axis=1) - 1).max(), 1e-12)
+        self.assertTrue(np.all(last.normal[~surface] == 0))
+
+    def test_history_has_the_vector_momenta_and_the_probe_in_space(self):
+        run = mpsolid.open_run(self.dir)
+        h = run.history_array
+        for name in ("momentum_z", "angular_momentum_x", "angular_momentum_y",
+                     "angular_momentum_z", "cube.zmin", "cube.zmax", "probe.corner.z"):
+            self.assertIn(name, h.dtype.names)
+        self.assertNotIn("angular_momentum", h.dtype.names)
+        for axis in "xyz":
+            column = h["angular_momentum_" + axis]
+            self.assertLess(np.abs(column - column[0]).max(), 1e-12 * np.abs(column[0]))
+        # The probe is the corner particle (the highest id), as the frame has it.
+        last = run.frames[-1]
+        corner = last.position[-1]
+        for k, axis in enumerate("xyz"):
+            self.assertEqual(h["probe.corner." + axis][-1], corner[k])
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
