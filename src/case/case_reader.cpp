@@ -249,7 +249,6 @@ void read_bodies(TableReader& top, CaseSpec& c) {
 void read_damping(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("damping");
   if (!table) return;
-  if (c.dimension == 3) refuse_in_space(top, "damping", "[damping]");
   TableReader r(*table, "damping", top.file());
   DampingSpec& d = c.damping;
   d.coefficient = r.number("coefficient", "c in 1/s: the force -c m v on every moving particle");
@@ -264,7 +263,6 @@ void read_damping(TableReader& top, CaseSpec& c) {
 void read_loads(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("loads");
   if (!table) return;
-  if (c.dimension == 3) refuse_in_space(top, "loads", "[loads]");
   for_each_named_table(
       *table, "loads", top.file(), "type, body, force, acceleration or pressure, start",
       [&](const std::string& name, const TomlValue&, TableReader& r) {

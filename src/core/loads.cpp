@@ -14,6 +14,26 @@ void centroid(const ParticleStore& p, Range range, double& cx, double& cy) {
   cy = sy / static_cast<double>(range.size());
 }
 
+void centroid(const ParticleStore& p, Range range, double& cx, double& cy, double& cz) {
+  cz = 0.0;
+  if (p.dimension != 3) return centroid(p, range, cx, cy);
+  const auto [sx, sy, sz] = ordered_sum<3>(range.begin, range.end, [&](std::size_t i) {
+    return std::array<double, 3>{p.x[i], p.y[i], p.z[i]};
+  });
+  const auto n = static_cast<double>(range.size());
+  cx = sx / n;
+  cy = sy / n;
+  cz = sz / n;
+}
+
+namespace {
+// F . (c - c0) for a force and the centroid's move (z only where it moves).
+double force_work(const StepLoad& load, double dx, double dy, double dz) {
+  const double plane = load.fx * dx + load.fy * dy;
+  return dz == 0.0 && load.fz == 0.0 ? plane : plane + load.fz * dz;
+}
+}  // namespace
+
 PressureSurface make_pressure_surface(const Surface& surface,
                                       const std::vector<std::uint32_t>& segments, std::size_t first,
                                       double pressure, double depth) {
@@ -201,18 +221,21 @@ void activate_loads(const ParticleStore& p, std::vector<StepLoad>& loads, std::i
     if (step < load.first_step || load.is_pressure()) continue;
     const bool varying = !load.history.constant();
     if (!load.active) {
-      centroid(p, load.range, load.cx_on, load.cy_on);
+      centroid(p, load.range, load.cx_on, load.cy_on, load.cz_on);
       load.active = true;
       if (!varying) continue;
       load.cx_last = load.cx_on;
       load.cy_last = load.cy_on;
+      load.cz_last = load.cz_on;
     } else if (varying) {
       // The work of the step that just ran: its force times the centroid's move.
-      double cx = 0, cy = 0;
-      centroid(p, load.range, cx, cy);
-      load.work += load.factor * (load.fx * (cx - load.cx_last) + load.fy * (cy - load.cy_last));
+      double cx = 0, cy = 0, cz = 0;
+      centroid(p, load.range, cx, cy, cz);
+      load.work +=
+          load.factor * force_work(load, cx - load.cx_last, cy - load.cy_last, cz - load.cz_last);
       load.cx_last = cx;
       load.cy_last = cy;
+      load.cz_last = cz;
     }
     if (varying) load.factor = load.history.factor(static_cast<double>(step) * dt - load.start);
   }
@@ -240,17 +263,23 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
       p.fx[i] += fx;
       p.fy[i] += fy;
     }
+    if (p.dimension == 3) {
+      const double fz = load.factor * load.fz * share;
+      for (std::size_t i = b; i < e; ++i) p.fz[i] += fz;
+    }
   }
 }
 
 double load_work(const ParticleStore& p, const StepLoad& load) {
   if (!load.active) return 0.0;
   if (load.is_pressure()) return load.work + running_pressure_work(p, load.surface);
-  double cx = 0, cy = 0;
-  centroid(p, load.range, cx, cy);
-  if (load.history.constant()) return load.fx * (cx - load.cx_on) + load.fy * (cy - load.cy_on);
+  double cx = 0, cy = 0, cz = 0;
+  centroid(p, load.range, cx, cy, cz);
+  if (load.history.constant())
+    return force_work(load, cx - load.cx_on, cy - load.cy_on, cz - load.cz_on);
   // The steps before the last, and the last up to now.
-  return load.work + load.factor * (load.fx * (cx - load.cx_last) + load.fy * (cy - load.cy_last));
+  return load.work +
+         load.factor * force_work(load, cx - load.cx_last, cy - load.cy_last, cz - load.cz_last);
 }
 
 double external_work(const ParticleStore& p, const std::vector<StepLoad>& loads) {

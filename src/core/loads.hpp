@@ -64,6 +64,7 @@ struct StepLoad {
   std::string name;
   Range range;                  // the loaded body's particles
   double fx = 0, fy = 0;        // total force (N) at a factor of 1
+  double fz = 0;                // in space
   LoadHistory history;          // the factor over time since `start`
   double start = 0;             // s: when it switches on
   std::int64_t first_step = 0;  // first step k with k dt >= start
@@ -71,11 +72,11 @@ struct StepLoad {
   // the work telescopes: W = F . (c(now) - c(first_step)), exactly, because
   // each step moves every particle by dt v and W_step = sum (F/N) . dt v.
   bool active = false;
-  double cx_on = 0, cy_on = 0;
+  double cx_on = 0, cy_on = 0, cz_on = 0;  // cz in space
   // A varying force: the factor of the step that ran last (or runs now),
   // the centroid at that step's start, and the work of the steps before it.
   double factor = 1;
-  double cx_last = 0, cy_last = 0;
+  double cx_last = 0, cy_last = 0, cz_last = 0;
   double work = 0;
   // A pressure load's surface; empty for a force. A body's gas load is a
   // pressure load over its whole surface with given node forces.
@@ -121,5 +122,7 @@ double external_work(const ParticleStore& p, const std::vector<StepLoad>& loads)
 
 // Centroid of a range of particles (ordered sum).
 void centroid(const ParticleStore& p, Range range, double& cx, double& cy);
+// The same with z (0 in the plane).
+void centroid(const ParticleStore& p, Range range, double& cx, double& cy, double& cz);
 
 }  // namespace mpsolid

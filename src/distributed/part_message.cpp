@@ -156,8 +156,8 @@ void put_load(Writer& w, const StepLoad& l) {
   w.put(l.name);
   w.put(l.range);
   for (const double v :
-       {l.fx, l.fy, l.start, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on,
-        l.cy_on, l.factor, l.cx_last, l.cy_last, l.work})
+       {l.fx, l.fy, l.fz, l.start, static_cast<double>(l.first_step), l.active ? 1.0 : 0.0, l.cx_on,
+        l.cy_on, l.cz_on, l.factor, l.cx_last, l.cy_last, l.cz_last, l.work})
     w.put(v);
   put_history(w, l.history);
   const PressureSurface& s = l.surface;
@@ -172,10 +172,13 @@ StepLoad get_load(Reader& r) {
   l.range = r.get_range();
   l.fx = r.get();
   l.fy = r.get();
+  l.fz = r.get();
   l.start = r.get();
   l.first_step = r.get_as<std::int64_t>();
   l.active = r.get() != 0.0;
-  for (double* v : {&l.cx_on, &l.cy_on, &l.factor, &l.cx_last, &l.cy_last, &l.work}) *v = r.get();
+  for (double* v :
+       {&l.cx_on, &l.cy_on, &l.cz_on, &l.factor, &l.cx_last, &l.cy_last, &l.cz_last, &l.work})
+    *v = r.get();
   l.history = get_history(r);
   PressureSurface& s = l.surface;
   for (double* v : {&s.pressure, &s.depth}) *v = r.get();

@@ -51,6 +51,8 @@ std::uint64_t content_hash(const Checkpoint& c) {
     if (l.factor != 1 || l.cx_last != 0 || l.cy_last != 0 || l.work != 0)
       for (const double v : {l.factor, l.cx_last, l.cy_last, l.work}) h.value(v);
     for (const double v : l.surface_xy) h.value(v);
+    if (l.cz_on != 0 || l.cz_last != 0)  // in space: the plane's hashes stay
+      for (const double v : {l.cz_on, l.cz_last}) h.value(v);
   }
   for (const auto& [name, values] : c.gas) {
     h.text(name);
@@ -87,8 +89,8 @@ Checkpoint capture_state(const SolverState& state) {
   for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.work});
   for (const StepLoad& l : state.loads) {
-    c.loads.push_back(
-        {l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work, l.surface.x});
+    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work,
+                       l.cz_on, l.cz_last, l.surface.x});
     std::vector<double>& xy = c.loads.back().surface_xy;
     for (const std::vector<double>* v : {&l.surface.y, &l.surface.given_fx, &l.surface.given_fy})
       xy.insert(xy.end(), v->begin(), v->end());
@@ -161,6 +163,8 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     s.loads[l].cx_last = c.loads[l].cx_last;
     s.loads[l].cy_last = c.loads[l].cy_last;
     s.loads[l].work = c.loads[l].work;
+    s.loads[l].cz_on = c.loads[l].cz_on;
+    s.loads[l].cz_last = c.loads[l].cz_last;
     if (StepLoad& load = s.loads[l]; load.is_pressure()) {
       const std::vector<double>& xy = c.loads[l].surface_xy;
       const std::size_t n = load.surface.nodes();
@@ -234,6 +238,12 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     loads.write("active", active);
     loads.write("centroid_on", centroid, 2);
     loads.write("varying", varying, 4);
+    // In space, each load's centroid z when it switched on and at the last
+    // step's start (written only where one is not 0).
+    std::vector<double> centroid_z;
+    for (const auto& l : c.loads) centroid_z.insert(centroid_z.end(), {l.cz_on, l.cz_last});
+    if (std::any_of(centroid_z.begin(), centroid_z.end(), [](double z) { return z != 0; }))
+      loads.write("centroid_z", centroid_z, 2);
     // Pressures' nodes, load after load (each x then y), and how many per load.
     std::vector<double> surfaces;
     std::vector<std::int64_t> surface_sizes;
@@ -329,7 +339,16 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
                          v[1],
                          v[2],
                          v[3],
+                         0.0,
+                         0.0,
                          {}});
+    }
+    if (loads.has("centroid_z")) {
+      const std::vector<double> z = loads.read<double>("centroid_z", load_names.size(), 2);
+      for (std::size_t l = 0; l < load_names.size(); ++l) {
+        c.loads[l].cz_on = z[2 * l];
+        c.loads[l].cz_last = z[2 * l + 1];
+      }
     }
     // Checkpoints written before pressures hold none.
     if (loads.has("surface_sizes")) {

@@ -39,6 +39,7 @@ struct LoadState {
   // A varying load's (src/core/loads.hpp): factor, centroid at the last
   // step's start, work before it.
   double factor = 1, cx_last = 0, cy_last = 0, work = 0;
+  double cz_on = 0, cz_last = 0;  // in space
   // A pressure's: its nodes' x at the last step's start, then their y; a
   // gas load's then its given node forces, x then y.
   std::vector<double> surface_xy;

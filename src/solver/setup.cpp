@@ -124,6 +124,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
     if (l.type == LoadSpec::Type::step) {
       load.fx = l.force[0];
       load.fy = l.force[1];
+      load.fz = l.force[2];
     } else if (l.type == LoadSpec::Type::pressure) {
       const Shape& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape;
       const Surface surface = build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
@@ -134,6 +135,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
       const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
       load.fx = mass * l.acceleration[0];
       load.fy = mass * l.acceleration[1];
+      load.fz = mass * l.acceleration[2];
     }
     s.loads.push_back(load);
   }

@@ -31,7 +31,7 @@ Swing first_swing(int particles_across) {
   const std::size_t tip = sim.state().probes.at(0);
   const double y0 = sim.particles().y[tip];
   std::vector<double> t, y;
-  const auto every = std::max<std::int64_t>(1, std::llround(2e-4 / spec.dt));
+  const auto every = std::max<std::int64_t>(1, std::llround(2e-4 / sim.spec().dt));
   const auto past_the_peak = [&] {
     return sim.time() > 0.05 && y.size() >= 3 && y.back() < y[y.size() - 2];
   };
