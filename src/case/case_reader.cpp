@@ -23,9 +23,12 @@ namespace mpsolid {
 
 namespace {
 
-// Bond indices are 32-bit, with up to 12 (and a few spare) entries per particle.
-constexpr double kMaxParticles =
-    static_cast<double>(std::numeric_limits<std::uint32_t>::max() / 16);
+// Bond indices and row offsets are 32-bit: up to 12 (and a few spare)
+// entries per particle in the plane, 32 (and a few spare) in space.
+double max_particles(int dimension) {
+  return static_cast<double>(std::numeric_limits<std::uint32_t>::max() /
+                             (dimension == 3 ? 40 : 16));
+}
 
 Kind parse_kind(TableReader& r, const std::string& key, const std::string& text) {
   if (text == "elastic") return Kind::elastic;
@@ -213,10 +216,10 @@ void read_bodies(TableReader& top, CaseSpec& c) {
         double estimate =
             ((box.hi.x - box.lo.x) / c.l0 + 1.0) * ((box.hi.y - box.lo.y) / c.l0 + 1.0);
         if (space) estimate *= (box.hi.z - box.lo.z) / c.l0 + 1.0;
-        if (!(estimate < kMaxParticles))
+        if (!(estimate < max_particles(c.dimension)))
           top.fail("l0", fmt::format("l0 = {} m gives about {:.3g} particles in bodies.{}, more "
                                      "than this build supports ({} particles)",
-                                     c.l0, estimate, name, kMaxParticles));
+                                     c.l0, estimate, name, max_particles(c.dimension)));
         const std::int64_t sites = b.site_count(c.l0, c.dimension);
         if (sites == 0)
           throw InputError(fmt::format(
@@ -240,10 +243,10 @@ void read_bodies(TableReader& top, CaseSpec& c) {
             first.name, body_kind_text(first, c.dimension), second.name,
             body_kind_text(second, c.dimension)));
     }
-  if (static_cast<double>(particle_total) >= kMaxParticles)
+  if (static_cast<double>(particle_total) >= max_particles(c.dimension))
     top.fail("l0", fmt::format("l0 = {} m gives {} particles, more than this build supports ({} "
                                "particles)",
-                               c.l0, particle_total, kMaxParticles));
+                               c.l0, particle_total, max_particles(c.dimension)));
 }
 
 void read_damping(TableReader& top, CaseSpec& c) {

@@ -236,6 +236,15 @@ TEST(SpaceCase, RefusesWhatItCannotRunWithTheKeyAndWhatIsAllowed) {
               std::string::npos)
         << e.what();
   }
+  // 32 bond entries per particle in space: fewer particles fit 32-bit rows.
+  try {
+    load_case_text(kHead + box + kTail, "space.toml", {"l0=5e-6"});
+    ADD_FAILURE() << "accepted 5e8 particles";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than this build supports (107374182 particles)"),
+              std::string::npos)
+        << e.what();
+  }
   try {
     load_case_text(kHead + box + kTail, "space.toml", {"dimension=4"});
     ADD_FAILURE() << "accepted dimension 4";
