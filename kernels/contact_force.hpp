@@ -18,18 +18,22 @@
 
 namespace mpsolid {
 
-// Calls pair(j, dx, dy, r) for each partner j of candidate a closer than d,
-// in ascending j, with (dx, dy) = r_i - r_j.
+// Calls pair(j, dx, dy, dz, r) for each partner j of candidate a closer
+// than d, in ascending j, with (dx, dy, dz) = r_i - r_j (dz = 0 in the
+// plane).
 template <class Pair>
 inline void for_each_touching(const ContactState& c, const ParticleStore& p, std::size_t a,
                               Pair&& pair) {
   const std::size_t i = c.candidates[a];
   const double d2 = c.parameters.distance * c.parameters.distance;
+  const bool space = p.dimension == 3;
   for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
     const std::size_t j = c.partner[k];
     const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
-    const double r2 = dx * dx + dy * dy;
-    if (r2 < d2) pair(j, dx, dy, std::sqrt(r2));
+    const double dz = space ? p.z[i] - p.z[j] : 0.0;
+    double r2 = dx * dx + dy * dy;
+    if (space) r2 += dz * dz;
+    if (r2 < d2) pair(j, dx, dy, dz, std::sqrt(r2));
   }
 }
 
@@ -44,8 +48,8 @@ inline void compute_contact_forces(ContactState& c, const ParticleStore& p, Rang
       c.stale.step.store(step, std::memory_order_relaxed);
       return;
     }
-    double fx = 0, fy = 0;
-    for_each_touching(c, p, a, [&](std::size_t, double dx, double dy, double r) {
+    double fx = 0, fy = 0, fz = 0;
+    for_each_touching(c, p, a, [&](std::size_t, double dx, double dy, double dz, double r) {
       if (r < c.parameters.min_distance) {
         std::int64_t none = -1;  // keeps the first step: steps only grow
         c.too_close.step.compare_exchange_strong(none, step, std::memory_order_relaxed);
@@ -53,9 +57,11 @@ inline void compute_contact_forces(ContactState& c, const ParticleStore& p, Rang
       const double push = k * (d - r) / r;
       fx += push * dx;
       fy += push * dy;
+      fz += push * dz;
     });
     c.force_x[a] = fx;
     c.force_y[a] = fy;
+    if (!c.force_z.empty()) c.force_z[a] = fz;
   }
 }
 
@@ -66,14 +72,17 @@ inline void add_contact_forces(ParticleStore& p, const ContactState& c, Range bl
     p.fx[c.candidates[a]] += c.force_x[a];
     p.fy[c.candidates[a]] += c.force_y[a];
   }
+  if (!c.force_z.empty())
+    for (std::size_t a = r.begin; a < r.end; ++a) p.fz[c.candidates[a]] += c.force_z[a];
 }
 
 // Candidate a's share of the contact energy: half of each of its pairs'.
 inline double contact_energy_share(const ContactState& c, const ParticleStore& p, std::size_t a) {
   const double k = c.parameters.stiffness, d = c.parameters.distance;
   double e = 0;
-  for_each_touching(
-      c, p, a, [&](std::size_t, double, double, double r) { e += 0.25 * k * (d - r) * (d - r); });
+  for_each_touching(c, p, a, [&](std::size_t, double, double, double, double r) {
+    e += 0.25 * k * (d - r) * (d - r);
+  });
   return e;
 }
 
@@ -85,7 +94,7 @@ inline StabilityVerdict check_interpenetration(const ContactState& c, const Part
   StabilityVerdict v;
   v.value = std::numeric_limits<double>::infinity();
   for (std::size_t a = c.first_moving; a < c.size(); ++a)
-    for_each_touching(c, p, a, [&](std::size_t j, double, double, double r) {
+    for_each_touching(c, p, a, [&](std::size_t j, double, double, double, double r) {
       if (r < v.value) {
         v.value = r;
         v.particle = c.candidates[a];

@@ -24,23 +24,32 @@ bool may_touch(const ContactState& c, const BondTable& bonds, std::size_t a, std
 // candidate whose position is not finite has no pairs: the run's finite
 // check reports it; the search must not fail first.
 struct NearCandidates {
-  std::vector<double> x, y;
+  std::vector<double> x, y, z;  // z in space only
   NeighborLists lists;
+  double squared_distance(std::size_t a, std::size_t b) const {
+    double d2 = mpsolid::squared_distance(x[a], y[a], x[b], y[b]);
+    if (!z.empty()) d2 += (z[a] - z[b]) * (z[a] - z[b]);
+    return d2;
+  }
 };
 NearCandidates near_candidates(const ContactState& c, const ParticleStore& p, double cutoff) {
   NearCandidates near;
+  const bool space = p.dimension == 3;
   std::vector<std::uint32_t> finite;  // the candidates searched, and their positions
-  std::vector<double> fx, fy;
+  std::vector<double> fx, fy, fz;
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double x = p.x[c.candidates[a]], y = p.y[c.candidates[a]];
+    const double z = space ? p.z[c.candidates[a]] : 0.0;
     near.x.push_back(x);
     near.y.push_back(y);
-    if (!std::isfinite(x) || !std::isfinite(y)) continue;
+    if (space) near.z.push_back(z);
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
     finite.push_back(static_cast<std::uint32_t>(a));
     fx.push_back(x);
     fy.push_back(y);
+    if (space) fz.push_back(z);
   }
-  const NeighborLists found = find_neighbors_sparse_cells({fx, fy}, cutoff);
+  const NeighborLists found = find_neighbors_sparse_cells({fx, fy, fz}, cutoff);
   near.lists.offsets.assign(c.size() + 1, 0);
   std::size_t next = 0;  // the next finite candidate
   for (std::size_t a = 0; a < c.size(); ++a) {
@@ -84,6 +93,10 @@ void build_contact_list(ContactState& c, const ParticleStore& p, const BondTable
     c.built_x[a] = p.x[c.candidates[a]];
     c.built_y[a] = p.y[c.candidates[a]];
   }
+  if (p.dimension == 3) {
+    c.built_z.resize(c.size());
+    for (std::size_t a = 0; a < c.size(); ++a) c.built_z[a] = p.z[c.candidates[a]];
+  }
   ++c.rebuilds;
 }
 
@@ -105,7 +118,7 @@ ClosestContact closest_contact(const ContactState& c, const ParticleStore& p,
     for (std::uint32_t k = near.lists.offsets[a]; k < near.lists.offsets[a + 1]; ++k) {
       const std::uint32_t b = near.lists.indices[k];
       if (b < a) continue;  // each pair once, from its lower end
-      const double d2 = squared_distance(near.x[a], near.y[a], near.x[b], near.y[b]);
+      const double d2 = near.squared_distance(a, b);
       // Only a pair that would be the closest is checked for a bond.
       if (d2 < best_d2 && may_touch(c, bonds, a, b)) {
         best_d2 = d2;

@@ -448,7 +448,6 @@ void read_stability(TableReader& top, CaseSpec& c) {
 void read_contact(TableReader& top, CaseSpec& c) {
   const TomlValue* table = top.subtable_or_null("contact");
   if (!table) return;
-  if (c.dimension == 3) refuse_in_space(top, "contact", "[contact]");
   TableReader r(*table, "contact", top.file());
   ContactSpec& k = c.contact;
   k.enabled = r.boolean_or("enabled", true);
@@ -492,8 +491,10 @@ void read_contact(TableReader& top, CaseSpec& c) {
   for (const int b : k.bodies) {
     const BodySpec& body = c.bodies[static_cast<std::size_t>(b)];
     const Material& m = c.materials[static_cast<std::size_t>(body.material)];
-    bulk = std::max(bulk, m.lambda() + m.mu());
-    if (body.kind == Kind::elastic) bulk_elastic = std::max(bulk_elastic, m.lambda() + m.mu());
+    // The bulk modulus: lambda + mu in plane strain, lambda + 2 mu / 3 in space.
+    const double modulus = c.dimension == 3 ? m.lambda() + 2.0 * m.mu() / 3.0 : m.lambda() + m.mu();
+    bulk = std::max(bulk, modulus);
+    if (body.kind == Kind::elastic) bulk_elastic = std::max(bulk_elastic, modulus);
   }
   k.stiffness = r.number_or("stiffness", bulk_elastic > 0 ? bulk_elastic : bulk);
   r.range_check("stiffness", k.stiffness, k.stiffness > 0 && std::isfinite(k.stiffness),

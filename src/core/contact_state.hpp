@@ -57,15 +57,16 @@ struct ContactState {
   // indices, ascending) are partner[offsets[c] .. offsets[c + 1]).
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> partner;
-  // Candidate positions when the list was built.
-  std::vector<double> built_x, built_y;
+  // Candidate positions when the list was built (z in space only).
+  std::vector<double> built_x, built_y, built_z;
   std::int64_t rebuilds = 0;
   StepMark stale;
   // The first step in which a pair came closer than min_distance (-1: none
   // yet): the blow-up check, run every few hundred steps, reports it.
   StepMark too_close;
-  // The current step's contact force on each candidate (N over the depth).
-  std::vector<double> force_x, force_y;
+  // The current step's contact force on each candidate (N over the depth;
+  // z in space only).
+  std::vector<double> force_x, force_y, force_z;
 
   bool enabled() const { return !candidates.empty(); }
   std::size_t size() const { return candidates.size(); }
@@ -77,8 +78,13 @@ struct ContactState {
   bool moved_past_half_skin(const ParticleStore& p, std::size_t a) const {
     const double dx = p.x[candidates[a]] - built_x[a];
     const double dy = p.y[candidates[a]] - built_y[a];
+    double d2 = dx * dx + dy * dy;
+    if (!built_z.empty()) {
+      const double dz = p.z[candidates[a]] - built_z[a];
+      d2 += dz * dz;
+    }
     const double half = 0.4999 * parameters.skin;
-    return dx * dx + dy * dy > half * half;
+    return d2 > half * half;
   }
   // The candidates whose storage index lies in [block.begin, block.end).
   Range candidates_in(Range block) const {

@@ -146,6 +146,7 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
     c.first_moving = contact.first_moving;
     c.force_x.assign(c.size(), 0.0);
     c.force_y.assign(c.size(), 0.0);
+    if (s.particles.dimension == 3) c.force_z.assign(c.size(), 0.0);
   }
   return s;
 }

@@ -12,29 +12,40 @@ namespace {
 // Walls never move: all of them share one group.
 constexpr std::int32_t kWallGroup = -2;
 
-// Lattice offsets (a, b) != 0 with |(a, b)| < radius: the bonds of an
-// interior particle when radius = re / l0.
-int lattice_sites_within(double radius, double u = 0, double v = 0, bool skip_origin = true) {
+// Lattice offsets (a, b[, c]) != 0 with |(a, b[, c])| < radius from the
+// point (u, v[, w]): the bonds of an interior particle when radius = re / l0
+// and the point is a site.
+int lattice_sites_within(int dimension, double radius, double u = 0, double v = 0, double w = 0,
+                         bool skip_origin = true) {
   const int reach = static_cast<int>(std::ceil(radius)) + 1;
+  const int reach_z = dimension == 3 ? reach : 0;
   int count = 0;
-  for (int a = -reach; a <= reach; ++a)
-    for (int b = -reach; b <= reach; ++b) {
-      if (skip_origin && a == 0 && b == 0) continue;
-      const double dx = a - u, dy = b - v;
-      if (dx * dx + dy * dy < radius * radius) ++count;
-    }
+  for (int c = -reach_z; c <= reach_z; ++c)
+    for (int a = -reach; a <= reach; ++a)
+      for (int b = -reach; b <= reach; ++b) {
+        if (skip_origin && a == 0 && b == 0 && c == 0) continue;
+        const double dx = a - u, dy = b - v, dz = dimension == 3 ? c - w : 0.0;
+        if (dx * dx + dy * dy + dz * dz < radius * radius) ++count;
+      }
   return count;
 }
 
 // The most lattice sites (spacing 1) closer than `radius` to any point.
-int most_sites_near_a_point(double radius) {
-  constexpr int kSamples = 40;
+int most_sites_near_a_point(int dimension, double radius) {
+  const int samples = dimension == 3 ? 20 : 40;
+  const auto at = [&](int s) { return 0.5 * s / samples; };
   int most = 0;
-  for (int s = 0; s <= kSamples; ++s)
-    for (int t = 0; t <= s; ++t)  // the cell's symmetric eighth suffices
-      most = std::max(most,
-                      lattice_sites_within(radius, 0.5 * s / kSamples, 0.5 * t / kSamples, false));
+  for (int s = 0; s <= samples; ++s)
+    for (int t = 0; t <= s; ++t)  // the cell's symmetric part suffices
+      for (int u = 0; u <= (dimension == 3 ? t : 0); ++u)
+        most = std::max(most, lattice_sites_within(dimension, radius, at(s), at(t), at(u), false));
   return most;
+}
+
+// The pair stiffness k (N/m): K_c times the depth in the plane, times l0 in
+// space (a pressure K_c (d - r) / l0 on a particle's face l0^2).
+double pair_stiffness(const CaseSpec& spec) {
+  return spec.contact.stiffness * (spec.dimension == 3 ? spec.l0 : spec.depth);
 }
 }  // namespace
 
@@ -45,10 +56,10 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
   const BondTable& bonds = s.bonds;
   c.parameters.distance = spec.contact.distance * spec.l0;
   c.parameters.skin = spec.contact.skin * spec.l0;
-  c.parameters.stiffness = spec.contact.stiffness * spec.depth;
+  c.parameters.stiffness = pair_stiffness(spec);
   c.parameters.min_distance = spec.contact.min_distance * c.parameters.distance;
   const int interior_bonds =
-      lattice_sites_within(bonds.geometry.re / bonds.geometry.l0 * (1.0 - 1e-12));
+      lattice_sites_within(p.dimension, bonds.geometry.re / bonds.geometry.l0 * (1.0 - 1e-12));
   std::vector<bool> contacting(p.size(), false);
   std::vector<std::int32_t> group_of(p.size(), kNoContactGroup);
   for (const int b : spec.contact.bodies) {
@@ -74,6 +85,7 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
       c.candidates.begin());
   c.force_x.assign(c.size(), 0.0);
   c.force_y.assign(c.size(), 0.0);
+  if (p.dimension == 3) c.force_z.assign(c.size(), 0.0);
   build_contact_list(c, p, bonds);
   return c;
 }
@@ -88,8 +100,8 @@ double contact_omega_squared(const CaseSpec& spec, const SolverState& s) {
     for (std::size_t i = r.begin; i < r.end; ++i)
       largest_inv_mass = std::max(largest_inv_mass, p.inv_mass[i]);
   }
-  const double k = spec.contact.stiffness * spec.depth;
-  return 2.0 * most_sites_near_a_point(spec.contact.distance) * k * largest_inv_mass;
+  return 2.0 * most_sites_near_a_point(spec.dimension, spec.contact.distance) *
+         pair_stiffness(spec) * largest_inv_mass;
 }
 
 }  // namespace mpsolid

@@ -15,20 +15,21 @@ namespace {
 void gather_candidate_positions(const RankContact& rc, ContactState& c, ParticleStore& p,
                                 const RankGroup& world, HaloCost& cost) {
   CommunicationTime t(cost);
+  // x, y (and z in space) per candidate.
+  std::vector<std::vector<double>*> axes = {&p.x, &p.y};
+  if (p.dimension == 3) axes.push_back(&p.z);
+  const std::size_t n = axes.size();
   std::vector<double> mine;
-  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a) {
-    mine.push_back(p.x[c.candidates[a]]);
-    mine.push_back(p.y[c.candidates[a]]);
-  }
+  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a)
+    for (const std::vector<double>* axis : axes) mine.push_back((*axis)[c.candidates[a]]);
   cost.bytes_sent += 8.0 * static_cast<double>(mine.size());
   const std::vector<double> all = world.all_gather(mine);
   cost.tally("contact positions").received(8 * (all.size() - mine.size()));
-  if (all.size() != 2 * (c.size() - c.first_moving))
+  if (all.size() != n * (c.size() - c.first_moving))
     throw std::logic_error("contact: the ranks' candidates do not cover the moving ones");
-  for (std::size_t a = c.first_moving; a < c.size(); ++a) {
-    p.x[c.candidates[a]] = all[2 * (a - c.first_moving)];
-    p.y[c.candidates[a]] = all[2 * (a - c.first_moving) + 1];
-  }
+  for (std::size_t a = c.first_moving; a < c.size(); ++a)
+    for (std::size_t k = 0; k < n; ++k)
+      (*axes[k])[c.candidates[a]] = all[n * (a - c.first_moving) + k];
 }
 
 // The contact halo of the current list: what this rank needs (partners of
@@ -112,7 +113,10 @@ void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layou
                        const RankGroup& world, std::int64_t step, HaloCost& cost) {
   ContactState& c = s.contact;
   ParticleStore& p = s.particles;
-  exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y)}, cost);
+  if (p.dimension == 3)
+    exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y), field_of(p.z)}, cost);
+  else
+    exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y)}, cost);
   compute_contact_forces(c, p, rc.owned, step);
   std::int64_t stale = 0;
   {

@@ -153,6 +153,12 @@ TEST(Ranks, DecomposedStepInSpaceGivesTheSerialBits) {
   }
 }
 
+// Contact in space: two spheres colliding obliquely, cut across the ranks.
+TEST(Ranks, DecomposedContactInSpaceGivesTheSerialBits) {
+  set_thread_count(1);
+  expect_serial_bits(load_case(testing::source_path("cases/colliding_spheres.toml")), 500);
+}
+
 // A ramped pressure on the plate's face: the plate takes the pressure's
 // forces; the rod, cut across the ranks, the plate's push.
 TEST(Ranks, DecomposedPressureGivesTheSerialBits) {

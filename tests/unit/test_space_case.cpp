@@ -195,7 +195,6 @@ TEST(SpaceCase, RefusesWhatItCannotRunWithTheKeyAndWhatIsAllowed) {
        "loads.f.force: expected three numbers"},
       {box + "\n[loads.f]\ntype = \"pressure\"\nbody = \"b\"\npressure = 1e3\n",
        "loads.f.type: a pressure load is not available in space"},
-      {box + "\n[contact]\n", "contact: [contact] is not available"},
       {"\n[bodies.b]\nkind = \"elastic\"\nmaterial = \"rubber\"\nshape = \"cylinder\"\nbase = "
        "[0, 0, 0]\ntop = [0, 0, 0]\nradius = 0.002\n",
        "bodies.b.top: the top is the base"},
@@ -369,6 +368,58 @@ TEST(SpaceCase, DampingInSpaceKeepsTheEnergyBalance) {
   }
 }
 
+// Two spheres colliding obliquely with contact (cases/colliding_spheres.toml):
+// the momentum and angular momentum vectors kept to round-off through the
+// collision, the struck sphere pushed along the line of centres, and the
+// energy error of first order in dt.
+struct Collision {
+  double energy_error = 0;  // the largest |KE + PE + contact - E0| / E0
+  Diagnostics end;
+  Eigen::Vector3d b_momentum;  // the struck sphere's
+};
+
+Collision collide(double safety) {
+  const CaseSpec spec = load_case(testing::source_path("cases/colliding_spheres.toml"),
+                                  {fmt::format("time.safety={}", safety)});
+  Simulation sim(spec);
+  const Diagnostics d0 = sim.diagnostics();
+  const double e0 = d0.kinetic_energy + d0.strain_energy + d0.contact_energy;
+  Collision c;
+  const std::int64_t steps = std::llround(0.003 / sim.spec().dt), every = steps / 40;
+  double closest = 1.0;
+  for (std::int64_t k = 0; k < 40; ++k) {
+    sim.advance(every);
+    const Diagnostics d = sim.diagnostics();
+    c.energy_error = std::max(
+        c.energy_error, std::abs(d.kinetic_energy + d.strain_energy + d.contact_energy - e0) / e0);
+    closest = std::min(closest, d.contact_min_distance);
+    const Eigen::Vector3d p(d.momentum_x, d.momentum_y, d.momentum_z);
+    EXPECT_LT((p - Eigen::Vector3d(d0.momentum_x, 0, 0)).norm(), 1e-13 * d0.momentum_x);
+    const Eigen::Vector3d l(d.angular_momentum_x, d.angular_momentum_y, d.angular_momentum);
+    EXPECT_LT(l.norm(), 1e-13 * d0.momentum_x * 0.01);  // about the path of a's centre: 0
+  }
+  EXPECT_LT(closest, 0.8 * 0.002) << "the spheres never touched";
+  c.end = sim.diagnostics();
+  const SolverState& s = sim.state();
+  const Range b = s.body_ranges[1];
+  c.b_momentum.setZero();
+  for (std::size_t i = b.begin; i < b.end; ++i)
+    c.b_momentum += Eigen::Vector3d(s.particles.vx[i], s.particles.vy[i], s.particles.vz[i]) /
+                    s.particles.inv_mass[i];
+  return c;
+}
+
+TEST(SpaceCase, ObliqueSpheresCollideWithMomentaKept) {
+  const Collision coarse = collide(0.4), fine = collide(0.2);
+  // Pushed along the line of centres, (24, 5, 2.5) mm: +x, +y and +z.
+  const Eigen::Vector3d line = Eigen::Vector3d(0.024, 0.005, 0.0025).normalized();
+  EXPECT_GT(coarse.b_momentum.normalized().dot(line), 0.98) << coarse.b_momentum.transpose();
+  EXPECT_GT(coarse.b_momentum.x(), 0.3 * coarse.end.momentum_x);
+  EXPECT_LT(coarse.energy_error, 0.01);
+  EXPECT_GT(coarse.energy_error / fine.energy_error, 1.5)
+      << coarse.energy_error << " vs " << fine.energy_error;
+}
+
 TEST(SpaceCase, SameBitsAt1To3Threads) {
   for (const char* model : {"finite_strain", "paper"}) {
     const CaseSpec spec =
@@ -391,6 +442,17 @@ TEST(SpaceCase, SameBitsAt1To3Threads) {
       EXPECT_EQ(d.strain_energy, d1.strain_energy);
       EXPECT_EQ(d.angular_momentum_x, d1.angular_momentum_x);
     }
+  }
+  // With contact: the spheres through their collision.
+  ParticleStore one;
+  for (const int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    Simulation sim(load_case(testing::source_path("cases/colliding_spheres.toml")));
+    sim.advance(400);
+    if (threads == 1)
+      one = sim.particles();
+    else
+      EXPECT_TRUE(testing::same_bits(one, sim.particles())) << "spheres, " << threads;
   }
   set_thread_count(available_cores());
 }
