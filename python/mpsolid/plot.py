@@ -479,9 +479,12 @@ def draw_particles(ax, frame, view, colours, kinds, field, scale, norm, size):
     """One frame's particles, body by body; the elastic ones coloured by the
     field when there is one. Returns the field's last scatter (or None)."""
     mappable = None
-    across_mm, down_mm = view.page(frame["position"] * 1e3)
+    position = frame["position"]
+    across_mm, down_mm = view.page(position * 1e3)
     for b, colour in colours.items():
-        sel = frame["body"] == b
+        sel = np.flatnonzero(frame["body"] == b)
+        if position.shape[1] == 3:  # in space, seen from +z: the nearer drawn over the farther
+            sel = sel[np.argsort(position[sel, 2], kind="stable")]
         if field and kinds[b] == KIND_ELASTIC:
             mappable = ax.scatter(across_mm[sel], down_mm[sel], s=size,
                                   c=frame[field][sel] * scale["scale"], cmap=COLOUR_MAP,
@@ -591,8 +594,10 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     layout = FramesLayout(n, view, colourbar=field is not None)
 
     shown = f"{n} of {total} frames" if n < total else f"{n} frames"
+    seen = ", seen along z (the nearer particles over the farther)" if case.get(
+        "dimension", 2) == 3 else ""
     heading, top = header_lines(
-        layout.fig_w, title, f"particles at {shown}, coloured by {COLOUR_WORDS[color_by]}",
+        layout.fig_w, title, f"particles at {shown}{seen}, coloured by {COLOUR_WORDS[color_by]}",
         blowup_words(blowup) + "; the last frame is the last good state" if blowup else None)
     notes = wrap_to(footnote, layout.fig_w - 0.2, 7)
     handles, labels = frames_legend(colours, kinds, body_names, scale, blowup)

@@ -55,8 +55,11 @@ def is_shaped(body):
 
 
 def shape_outlines(case):
-    """{body name: [outline, ...]} of the case's shaped bodies, holes included."""
+    """{body name: [outline, ...]} of the case's shaped bodies, holes included
+    (none in space: a body there has no plane outline)."""
     out = {}
+    if case.get("dimension", 2) == 3:
+        return out
     for name, body in case.get("bodies", {}).items():
         if body.get("kind") == "wall" or not is_shaped(body):
             continue

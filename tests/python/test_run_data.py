@@ -173,6 +173,14 @@ class SpaceRun(unittest.TestCase):
         self.assertLess(np.abs(np.linalg.norm(last.normal[surface], axis=1) - 1).max(), 1e-12)
         self.assertTrue(np.all(last.normal[~surface] == 0))
 
+    def test_pictures_of_a_run_in_space_are_projections_along_z(self):
+        from mpsolid import plot
+        drawn = plot.plot_run(self.dir, color="strain", frames=3)
+        for name in ("frames.png", "history.png"):
+            with open(os.path.join(self.dir, name), "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", name)
+        self.assertEqual(len(drawn["frames"]["panels"]), 3)
+
     def test_history_has_the_vector_momenta_and_the_probe_in_space(self):
         run = mpsolid.open_run(self.dir)
         h = run.history_array
