@@ -64,6 +64,9 @@ def parse_args():
     parser.add_argument("--reference", metavar="FILE.csv",
                         help="a reference curve drawn over the rigid-body displacement: "
                              "columns t, x in s and m (a header row allowed)")
+    parser.add_argument("--section", type=float, metavar="Z",
+                        help="a run in space: draw the layer of particles at z = Z (m) at the "
+                             "start (a material section) instead of them all seen along z")
     parser.add_argument("--describe", action="store_true",
                         help="print what was drawn as JSON on stdout (the PNGs are still written)")
     return parser.parse_args()
@@ -79,7 +82,7 @@ def main():
         fail("--dpi must be at least 20")
     try:
         drawn = plot.plot_run(args.dir, color=args.color, frames=args.frames, dpi=args.dpi,
-                              reference=args.reference)
+                              reference=args.reference, section=args.section)
     except plot.PlotError as e:
         fail(str(e), e.code)
     if args.describe:

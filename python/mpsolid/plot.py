@@ -86,6 +86,37 @@ def history_to_draw(folder):
     return columns
 
 
+class Section:
+    """A frame cut to the particles of `keep` (a boolean mask in id order):
+    read as the frame is, field by field."""
+
+    def __init__(self, frame, keep):
+        self._frame, self._keep = frame, keep
+        self.time, self.step = frame.time, frame.step
+
+    def __getitem__(self, name):
+        return self._frame[name][self._keep]
+
+    def fields(self):
+        return self._frame.fields()
+
+
+def cut_to_section(frames, z, l0):
+    """The frames cut to one layer of particles: those within half a spacing
+    of the particle nearest z = `z` in the first frame (the same particles
+    in every panel: a material section), and that layer's z; raises
+    PlotError for a plane run or a z off every body."""
+    position = frames[0]["position"]
+    if position.shape[1] != 3:
+        raise PlotError("--section needs a run in space (dimension = 3)")
+    nearest = position[np.argmin(np.abs(position[:, 2] - z)), 2]
+    if abs(nearest - z) > l0:
+        raise PlotError(f"--section {z:g}: no particle within l0 = {l0:g} m of that z "
+                        f"(z from {position[:, 2].min():g} to {position[:, 2].max():g} m)")
+    keep = np.abs(position[:, 2] - nearest) < 0.5 * l0
+    return [Section(frame, keep) for frame in frames], float(nearest)
+
+
 def pick(count, limit):
     """Up to `limit` indices of 0..count-1, evenly spread, first and last kept."""
     if count <= limit:
@@ -578,7 +609,7 @@ def draw_frame_panels(fig, frames, layout, view, colours, kinds, field, scale, l
 
 
 def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blowup, footnote,
-                case=None):
+                case=None, section=None):
     """Writes FOLDER/frames.png: the frames in a grid, one colour scale over
     every panel (or body colours), the shaped bodies' reference outlines and
     the pressure loads' arrows (from `case`, the resolved case), and returns
@@ -596,6 +627,8 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     shown = f"{n} of {total} frames" if n < total else f"{n} frames"
     seen = ", seen along z (the nearer particles over the farther)" if case.get(
         "dimension", 2) == 3 else ""
+    if section is not None:
+        seen = f", the layer at z = {number(section * 1e3)} mm at the start"
     heading, top = header_lines(
         layout.fig_w, title, f"particles at {shown}{seen}, coloured by {COLOUR_WORDS[color_by]}",
         blowup_words(blowup) + "; the last frame is the last good state" if blowup else None)
@@ -623,7 +656,8 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     return {"file": out, "size_px": png_size(out), "rows": layout.rows,
             "columns": layout.columns,
             "orientation": "x across the page" if view.x_along else "x down the page",
-            "color": color_by, "title": title, "panels": panels, "colorbar": colorbar,
+            "color": color_by, "title": title, "section_z_m": section, "panels": panels,
+            "colorbar": colorbar,
             "legend": labels, "footnote": footnote,
             "outlines": {b: len(lines) for b, lines in shapes["outlines"].items()},
             "pressure_particles": {name: len(v) for name, v in shapes["loaded"].items()},
@@ -841,17 +875,21 @@ def plot_history(folder, h, dpi, title, blowup, footnote, reference):
 # ---------------------------------------------------------------- both
 
 
-def plot_run(folder, color="pressure", frames=12, dpi=150, reference=None):
+def plot_run(folder, color="pressure", frames=12, dpi=150, reference=None, section=None):
     """Writes FOLDER/frames.png and FOLDER/history.png of a run folder:
     `color` pressure, strain or body; at most `frames` frames; `reference` a
-    CSV file of t, x (s, m) drawn over the rigid-body displacement. Returns
-    what was drawn, {"frames": ..., "history": ...}; raises PlotError."""
+    CSV file of t, x (s, m) drawn over the rigid-body displacement; in space
+    `section` a z (m): the layer of particles there at the start instead of
+    all of them seen along z. Returns what was drawn, {"frames": ...,
+    "history": ...}; raises PlotError."""
     check_folder(folder)
     curve = (reference, read_reference(reference)) if reference else None
     history = history_to_draw(folder)
     chosen, body_names, l0, total = read_frames(folder, frames, COLOUR_FIELDS.get(color))
+    if section is not None:
+        chosen, section = cut_to_section(chosen, section, l0)
     case = run_data.read_case(folder, default={})
     title, blowup, footnote = describe_run(folder, run_data.read_info(folder, default={}), case)
     return {"frames": plot_frames(folder, chosen, body_names, l0, total, color, dpi, title,
-                                  blowup, footnote, case),
+                                  blowup, footnote, case, section),
             "history": plot_history(folder, history, dpi, title, blowup, footnote, curve)}

@@ -180,6 +180,11 @@ class SpaceRun(unittest.TestCase):
             with open(os.path.join(self.dir, name), "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", name)
         self.assertEqual(len(drawn["frames"]["panels"]), 3)
+        # A section: the layer nearest z = 0 (sites at +-4 mm), 10 x 10 particles.
+        drawn = plot.plot_run(self.dir, frames=2, section=0.0)
+        self.assertAlmostEqual(drawn["frames"]["section_z_m"], -0.004, delta=1e-15)
+        with self.assertRaises(plot.PlotError):
+            plot.plot_run(self.dir, section=0.5)
 
     def test_history_has_the_vector_momenta_and_the_probe_in_space(self):
         run = mpsolid.open_run(self.dir)
