@@ -420,14 +420,14 @@ TEST(SpaceCase, ObliqueSpheresCollideWithMomentaKept) {
       << coarse.energy_error << " vs " << fine.energy_error;
 }
 
-TEST(SpaceCase, SameBitsAt1To3Threads) {
+TEST(SpaceCase, SameBitsAt1To4Threads) {
   for (const char* model : {"finite_strain", "paper"}) {
     const CaseSpec spec =
         load_case(testing::source_path("cases/spinning_cube.toml"),
                   with({"l0=0.008", std::string("model=\"") + model + "\""}, kLoaded));
     ParticleStore one;
     Diagnostics d1;
-    for (const int threads : {1, 2, 3}) {
+    for (const int threads : {1, 2, 3, 4}) {
       set_thread_count(threads);
       Simulation sim(spec);
       sim.advance(200);
@@ -445,7 +445,7 @@ TEST(SpaceCase, SameBitsAt1To3Threads) {
   }
   // With contact: the spheres through their collision.
   ParticleStore one;
-  for (const int threads : {1, 2, 3}) {
+  for (const int threads : {1, 2, 3, 4}) {
     set_thread_count(threads);
     Simulation sim(load_case(testing::source_path("cases/colliding_spheres.toml")));
     sim.advance(400);
