@@ -68,6 +68,13 @@ struct ContactState {
   // z in space only).
   std::vector<double> force_x, force_y, force_z;
 
+  // The forces' arrays, one per candidate and axis, zeroed.
+  void zero_forces(int dimension) {
+    force_x.assign(size(), 0.0);
+    force_y.assign(size(), 0.0);
+    if (dimension == 3) force_z.assign(size(), 0.0);
+  }
+
   bool enabled() const { return !candidates.empty(); }
   std::size_t size() const { return candidates.size(); }
   // True when candidate a has moved more than half the skin since the

@@ -10,13 +10,8 @@ namespace mpsolid {
 namespace {
 // Max is order-independent: a plain loop is reproducible.
 double max_speed(const ParticleStore& p, Range r) {
-  const bool space = p.dimension == 3;
   double vmax2 = 0.0;
-  for (std::size_t i = r.begin; i < r.end; ++i) {
-    double v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
-    if (space) v2 += p.vz[i] * p.vz[i];
-    vmax2 = std::max(vmax2, v2);
-  }
+  for (std::size_t i = r.begin; i < r.end; ++i) vmax2 = std::max(vmax2, speed_squared(p, i));
   return std::sqrt(vmax2);
 }
 

@@ -41,6 +41,12 @@ struct Diagnostics {
   GasFigures gas;  // zeros without a gas
 };
 
+// |v_i|^2 (vz in space only).
+inline double speed_squared(const ParticleStore& p, std::size_t i) {
+  const double v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
+  return p.dimension == 3 ? v2 + p.vz[i] * p.vz[i] : v2;
+}
+
 // Kinetic energy, momenta and max speed of the moving particles.
 Diagnostics motion_diagnostics(const ParticleStore& p);
 

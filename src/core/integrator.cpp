@@ -49,12 +49,9 @@ void drift_rotation_in_space(ParticleStore& p, Range range, double dt) {
     p.omega_x[i] += dt * p.torque_x[i] * p.inv_inertia[i];
     p.omega_y[i] += dt * p.torque_y[i] * p.inv_inertia[i];
     p.omega[i] += dt * p.torque[i] * p.inv_inertia[i];
-    const Eigen::Vector3d turn = dt * Eigen::Vector3d(p.omega_x[i], p.omega_y[i], p.omega[i]);
-    const double angle = turn.norm();
-    if (angle == 0.0) continue;
-    const Eigen::Quaterniond q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle)) *
-                                  Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]))
-                                     .normalized();
+    const Eigen::Quaterniond q =
+        turned(Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]),
+               dt * Eigen::Vector3d(p.omega_x[i], p.omega_y[i], p.omega[i]));
     p.qw[i] = q.w();
     p.qx[i] = q.x();
     p.qy[i] = q.y();

@@ -9,18 +9,13 @@ namespace mpsolid {
 
 StabilityVerdict check_finite(const ParticleStore& p) {
   StabilityVerdict v;
-  const bool space = p.dimension == 3;
+  // Every state row of the store's dimension (positions, velocities,
+  // rotations, spins), particle by particle: the first bad particle.
+  const std::vector<StateArray> arrays = state_arrays(p.dimension);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const bool finite =
-        space
-            ? std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.z[i]) &&
-                  std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) && std::isfinite(p.vz[i]) &&
-                  std::isfinite(p.qw[i]) && std::isfinite(p.qx[i]) && std::isfinite(p.qy[i]) &&
-                  std::isfinite(p.qz[i]) && std::isfinite(p.omega_x[i]) &&
-                  std::isfinite(p.omega_y[i]) && std::isfinite(p.omega[i])
-            : std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.vx[i]) &&
-                  std::isfinite(p.vy[i]) && std::isfinite(p.theta[i]) && std::isfinite(p.omega[i]);
-    if (finite) continue;
+    if (std::all_of(arrays.begin(), arrays.end(),
+                    [&](const StateArray& a) { return std::isfinite((p.*a.member)[i]); }))
+      continue;
     v.ok = false;
     v.criterion = "non-finite state (NaN or Inf in position, velocity or rotation)";
     v.particle = i;
@@ -34,8 +29,7 @@ StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
   const Range r = p.moving();
   double fastest2 = -1.0;
   for (std::size_t i = r.begin; i < r.end; ++i) {
-    double s2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i];
-    if (p.dimension == 3) s2 += p.vz[i] * p.vz[i];
+    const double s2 = speed_squared(p, i);
     if (s2 > fastest2) {
       fastest2 = s2;
       v.particle = i;

@@ -144,9 +144,7 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
       c.candidates.push_back(static_cast<std::uint32_t>(layout.local_of(g)));
     c.group = contact.group;
     c.first_moving = contact.first_moving;
-    c.force_x.assign(c.size(), 0.0);
-    c.force_y.assign(c.size(), 0.0);
-    if (s.particles.dimension == 3) c.force_z.assign(c.size(), 0.0);
+    c.zero_forces(s.particles.dimension);
   }
   return s;
 }

@@ -293,9 +293,7 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   c.first_moving = r.get_as<std::size_t>();
   c.candidates = r.get_vector<std::uint32_t>();
   c.group = r.get_vector<std::int32_t>();
-  c.force_x.assign(c.size(), 0.0);
-  c.force_y.assign(c.size(), 0.0);
-  if (s.particles.dimension == 3) c.force_z.assign(c.size(), 0.0);
+  c.zero_forces(s.particles.dimension);
   s.step = r.get_as<std::int64_t>();
   s.peak_work = r.get();
   s.damping.coefficient = r.get();

@@ -88,13 +88,13 @@ void write_space_fields(const SolverState& state, const std::vector<std::size_t>
   std::vector<double> rx(n, 0.0), ry(n, 0.0), rz(n, 0.0);  // the rotation vector
   std::vector<double> nx(n, 0.0), ny(n, 0.0), nz(n, 0.0);
   std::vector<std::int8_t> surface(n, 0);
+  const double nearest2 = 1.01 * bonds.geometry.l0 * bonds.geometry.l0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::AngleAxisd turn(Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]));
     const Eigen::Vector3d r = turn.angle() * turn.axis();
     rx[i] = r.x();
     ry[i] = r.y();
     rz[i] = r.z();
-    const double nearest2 = 1.01 * bonds.geometry.l0 * bonds.geometry.l0;
     int nearest = 0;
     Eigen::Vector3d now = Eigen::Vector3d::Zero();
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -103,11 +103,12 @@ void write_space_fields(const SolverState& state, const std::vector<std::size_t>
       nearest += r0.squaredNorm() < nearest2;
       now += Eigen::Vector3d(p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]);
     }
-    if (nearest >= 6 || now.norm() == 0) continue;
+    const double length = now.norm();
+    if (nearest >= 6 || length == 0) continue;
     surface[i] = 1;
-    nx[i] = -now.x() / now.norm();
-    ny[i] = -now.y() / now.norm();
-    nz[i] = -now.z() / now.norm();
+    nx[i] = -now.x() / length;
+    ny[i] = -now.y() / length;
+    nz[i] = -now.z() / length;
   }
   std::vector<std::int8_t> surface_flag(n);
   for (std::size_t k = 0; k < n; ++k) surface_flag[k] = surface[order[k]];

@@ -12,22 +12,15 @@ namespace mpsolid {
 
 std::vector<std::string> history_columns(const SolverState& state, const CaseSpec& spec) {
   const bool space = spec.dimension == 3;
+  std::vector<std::string> cols = {"t",          "kinetic_energy", "strain_energy", "external_work",
+                                   "momentum_x", "momentum_y"};
   // In space the momenta are vectors.
-  std::vector<std::string> cols =
-      space ? std::vector<std::string>{"t",
-                                       "kinetic_energy",
-                                       "strain_energy",
-                                       "external_work",
-                                       "momentum_x",
-                                       "momentum_y",
-                                       "momentum_z",
-                                       "angular_momentum_x",
-                                       "angular_momentum_y",
-                                       "angular_momentum_z",
-                                       "max_speed"}
-            : std::vector<std::string>{
-                  "t",          "kinetic_energy", "strain_energy",    "external_work",
-                  "momentum_x", "momentum_y",     "angular_momentum", "max_speed"};
+  if (space)
+    cols.insert(cols.end(),
+                {"momentum_z", "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"});
+  else
+    cols.push_back("angular_momentum");
+  cols.push_back("max_speed");
   if (spec.damping.coefficient > 0) cols.push_back("damping_loss");
   if (state.contact.enabled()) cols.insert(cols.end(), {"contact_energy", "contact_min_distance"});
   for (const RigidBody& b : state.rigid_bodies) {
@@ -62,21 +55,10 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
 std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
                                 const Diagnostics& d) {
   const bool space = spec.dimension == 3;
-  std::vector<double> row =
-      space ? std::vector<double>{spec.time_at(state.step),
-                                  d.kinetic_energy,
-                                  d.strain_energy,
-                                  d.external_work,
-                                  d.momentum_x,
-                                  d.momentum_y,
-                                  d.momentum_z,
-                                  d.angular_momentum_x,
-                                  d.angular_momentum_y,
-                                  d.angular_momentum,
-                                  d.max_speed}
-            : std::vector<double>{spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
-                                  d.external_work,          d.momentum_x,     d.momentum_y,
-                                  d.angular_momentum,       d.max_speed};
+  std::vector<double> row = {spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
+                             d.external_work,          d.momentum_x,     d.momentum_y};
+  if (space) row.insert(row.end(), {d.momentum_z, d.angular_momentum_x, d.angular_momentum_y});
+  row.insert(row.end(), {d.angular_momentum, d.max_speed});
   if (spec.damping.coefficient > 0) row.push_back(d.damping_loss);
   if (state.contact.enabled()) row.insert(row.end(), {d.contact_energy, d.contact_min_distance});
   for (const RigidBody& b : state.rigid_bodies) {

@@ -83,9 +83,7 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
       std::find_if(c.candidates.begin(), c.candidates.end(),
                    [&](std::uint32_t i) { return p.kind[i] != Kind::wall; }) -
       c.candidates.begin());
-  c.force_x.assign(c.size(), 0.0);
-  c.force_y.assign(c.size(), 0.0);
-  if (p.dimension == 3) c.force_z.assign(c.size(), 0.0);
+  c.zero_forces(p.dimension);
   build_contact_list(c, p, bonds);
   return c;
 }

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "src/core/loads.hpp"
-#include "src/core/ordered_sum.hpp"
 
 namespace mpsolid {
 
@@ -19,12 +18,6 @@ double bending_mode_shape(const BendingMode& mode, double x) {
 }
 
 namespace {
-double centroid_z(const ParticleStore& p, Range r) {
-  const auto [sz] =
-      ordered_sum<1>(r.begin, r.end, [&](std::size_t i) { return std::array<double, 1>{p.z[i]}; });
-  return sz / static_cast<double>(r.size());
-}
-
 // An elastic body's motion in space: v = v0 + w x (x - c), every particle
 // turning at w with the body, plus the bending mode, less the held component.
 void apply_motion_in_space(ParticleStore& p, const BodySpec& body, Range r,
@@ -64,10 +57,10 @@ void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotati
       continue;
     }
     if (body.kind != Kind::elastic) continue;
-    double cx = 0, cy = 0;
-    centroid(p, r, cx, cy);
+    double cx = 0, cy = 0, cz = 0;
+    centroid(p, r, cx, cy, cz);
     if (p.dimension == 3) {
-      apply_motion_in_space(p, body, r, {cx, cy, centroid_z(p, r)}, with_rotation);
+      apply_motion_in_space(p, body, r, {cx, cy, cz}, with_rotation);
       continue;
     }
     for (std::size_t i = r.begin; i < r.end; ++i) {

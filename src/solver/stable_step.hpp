@@ -16,9 +16,8 @@
 #include <cstdint>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include "src/core/half_angles.hpp"
+#include "src/core/integrator.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stable_step_estimate.hpp"
 
@@ -45,11 +44,9 @@ inline void turn(const ParticleStore& base, ParticleStore& work, std::size_t i, 
     work.theta[i] = base.theta[i] + phi[0];
     return;
   }
-  const Eigen::Vector3d v(phi[0], phi[1], phi[2]);
-  const double angle = v.norm();
-  const Eigen::Quaterniond q0(base.qw[i], base.qx[i], base.qy[i], base.qz[i]);
   const Eigen::Quaterniond q =
-      angle > 0 ? (Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle)) * q0).normalized() : q0;
+      turned(Eigen::Quaterniond(base.qw[i], base.qx[i], base.qy[i], base.qz[i]),
+             Eigen::Vector3d(phi[0], phi[1], phi[2]));
   work.qw[i] = q.w();
   work.qx[i] = q.x();
   work.qy[i] = q.y();

@@ -2,7 +2,8 @@
 // clamped by a wall, started in its first bending mode): the tip's first
 // peak comes a quarter period after the start, and the frequency it gives
 // converges with l0 towards Euler-Bernoulli's (shear and rotary inertia
-// lower the exact value by about 0.15 % at L / h = 20).
+// lower the exact value by about 0.15 % at L / h = 20, by Timoshenko's
+// first-order correction).
 #include <gtest/gtest.h>
 
 #include <cmath>
