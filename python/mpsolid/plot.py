@@ -705,30 +705,42 @@ class HistoryFigure:
 
 
 def history_bodies(h):
-    """The history's rigid bodies (BODY.x and BODY.theta), elastic bodies
-    (BODY.xmin...) and probes (probe.NAME.x), by name."""
-    rigid = [c[:-2] for c in h if c.endswith(".x") and c[:-2] + ".theta" in h]
+    """The history's rigid bodies (BODY.x and BODY.theta, in space BODY.qw),
+    elastic bodies (BODY.xmin...) and probes (probe.NAME.x), by name."""
+    rigid = [c[:-2] for c in h if c.endswith(".x")
+             and (c[:-2] + ".theta" in h or c[:-2] + ".qw" in h)]
     elastic = [c[:-5] for c in h if c.endswith(".xmin")]
     probes = [c[6:-2] for c in h if c.startswith("probe.") and c.endswith(".x")]
     return rigid, elastic, probes
 
 
-def history_panel_names(rigid, elastic, probes):
-    """The panels in page order: each only where the history has its columns."""
-    names = ["rigid"] if rigid else []
+def in_space(h):
+    """Whether the history is of a run in space (its momenta are vectors)."""
+    return "momentum_z" in h
+
+
+def history_panel_names(rigid, elastic, probes, space=False, moves=True):
+    """The panels in page order: each only where the history has its columns
+    (in space the rigid bodies' spins and the z extents too, and their
+    displacement only where one moves)."""
+    names = ["rigid"] if rigid and (not space or moves) else []
+    if rigid and space:
+        names += ["spin"]
     if elastic or probes:
-        names += ["x", "y"]
+        names += ["x", "y", "z"] if space else ["x", "y"]
     return names + ["energy", "balance", "speed"]
 
 
 def draw_rigid(hf, t, h, rigid, marker, reference):
-    """The rigid bodies' displacement (y only where it moves), and the
-    reference curve over it."""
+    """The rigid bodies' displacement (y and z only where they move), and
+    the reference curve over it."""
     hf.panel("rigid", "rigid bodies: displacement", "displacement (mm)")
     for b in rigid:
         hf.line("rigid", t, h[b + ".x"] * 1e3, f"{b}: x", linewidth=1.6, **marker)
-        if np.any(np.abs(h[b + ".y"]) > 1e-9):
-            hf.line("rigid", t, h[b + ".y"] * 1e3, f"{b}: y", linewidth=1.2, **marker)
+        for axis in ("y", "z"):
+            if b + "." + axis in h and np.any(np.abs(h[b + "." + axis]) > 1e-9):
+                hf.line("rigid", t, h[b + "." + axis] * 1e3, f"{b}: {axis}", linewidth=1.2,
+                        **marker)
     if reference is not None:
         path, (rt, rx) = reference
         hf.line("rigid", rt * 1e3, rx * 1e3, f"reference: {os.path.basename(path)}",
@@ -737,11 +749,34 @@ def draw_rigid(hf, t, h, rigid, marker, reference):
         hf.panels["rigid"]["reference"] = {"file": os.path.abspath(path), "points": int(rt.size)}
 
 
+def body_axes_rates(h, b):
+    """A rigid body's angular velocity in its own axes as they were at the
+    start, R^-1 omega with R its rotation from the start (BODY.qw...), as
+    three arrays."""
+    w = np.stack([h[f"{b}.omega_{a}"] for a in "xyz"], axis=1)
+    u = -np.stack([h[f"{b}.q{a}"] for a in "xyz"], axis=1)  # the inverse turn
+    uw = np.cross(u, w)
+    turned = w + 2.0 * h[f"{b}.qw"][:, None] * uw + 2.0 * np.cross(u, uw)
+    return turned[:, 0], turned[:, 1], turned[:, 2]
+
+
+def draw_spins(hf, t, h, rigid, marker):
+    """In space: each rigid body's angular velocity in its own axes (a body
+    tumbling about its intermediate axis shows each flip as that
+    component's change of sign)."""
+    hf.panel("spin", "rigid bodies: angular velocity in the body's axes",
+             "angular velocity (rad/s)")
+    for b in rigid:
+        for axis, rate, style in zip("xyz", body_axes_rates(h, b), ("-", "--", ":")):
+            hf.line("spin", t, rate, f"{b}: about its {axis} axis", linewidth=1.4, linestyle=style,
+                    **marker)
+
+
 def draw_extents(hf, t, h, elastic, probes, marker):
     """Per axis, each elastic body's extent (a band between min and max) and
     the probes."""
     cycle = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
-    for axis in ("x", "y"):
+    for axis in ("x", "y", "z") if in_space(h) else ("x", "y"):
         hf.panel(axis, f"elastic bodies: {axis} extent"
                  + (" and probes" if probes else " (particle centres)"), f"{axis} (mm)")
         for k, b in enumerate(elastic):
@@ -759,7 +794,7 @@ def draw_extents(hf, t, h, elastic, probes, marker):
 def draw_energies(hf, t, h):
     """External work, kinetic and strain energy, and their sum."""
     ke, pe, w = h["kinetic_energy"], h["strain_energy"], h["external_work"]
-    hf.panel("energy", "energies", "energy (J per m of depth)")
+    hf.panel("energy", "energies", "energy (J)" if in_space(h) else "energy (J per m of depth)")
     hf.line("energy", t, w, "external work W", color="black", linewidth=1.6)
     hf.line("energy", t, ke, "kinetic KE", color="#d1495b", linewidth=1.4)
     hf.line("energy", t, pe, "strain PE", color="#2a6fb0", linewidth=1.4)
@@ -847,10 +882,15 @@ def plot_history(folder, h, dpi, title, blowup, footnote, reference):
                                 blowup_words(blowup) if blowup else None)
     notes = wrap_to(footnote, fig_w - 0.2, 7)
     bottom = 0.12 + 0.12 * len(notes)
-    hf = HistoryFigure(history_panel_names(rigid, elastic, probes), fig_w, top, bottom)
+    moves = reference is not None or any(np.any(np.abs(h[f"{b}.{axis}"]) > 1e-9) for b in rigid for axis in "xyz"
+                if f"{b}.{axis}" in h)
+    hf = HistoryFigure(history_panel_names(rigid, elastic, probes, in_space(h), moves), fig_w,
+                       top, bottom)
 
-    if rigid:
+    if "rigid" in hf.axes:
         draw_rigid(hf, t, h, rigid, marker, reference)
+    if "spin" in hf.axes:
+        draw_spins(hf, t, h, rigid, marker)
     if "x" in hf.axes:
         draw_extents(hf, t, h, elastic, probes, marker)
     draw_energies(hf, t, h)

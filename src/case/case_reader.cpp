@@ -133,9 +133,11 @@ void read_materials(TableReader& top, CaseSpec& c) {
 }
 
 // velocity, spin, hold and bending_mode of a [bodies.NAME] table.
-// [bodies.NAME.motion]: velocity = [vx, vy], spin, start and a history. A
-// wall driven so is stepped as a rigid body: both follow the motion alone.
-void read_prescribed_motion(TableReader& r, BodySpec& b, const std::string& case_file) {
+// [bodies.NAME.motion]: velocity = [vx, vy] (in space [vx, vy, vz]), spin
+// (in space the vector [wx, wy, wz]), start and a history. A wall driven so
+// is stepped as a rigid body: both follow the motion alone.
+void read_prescribed_motion(TableReader& r, BodySpec& b, const std::string& case_file,
+                            int dimension) {
   const TomlValue* table = r.subtable_or_null("motion");
   if (!table) return;
   if (b.kind == Kind::elastic)
@@ -146,11 +148,14 @@ void read_prescribed_motion(TableReader& r, BodySpec& b, const std::string& case
   TableReader m(*table, r.key_path("motion"), r.file());
   PrescribedMotion& motion = b.motion;
   motion.on = true;
-  double v[2];
-  m.pair("velocity", "the velocity [vx, vy] in m/s at a history factor of 1", v);
-  motion.vx = v[0];
-  motion.vy = v[1];
-  motion.spin = m.number_or("spin", 0.0);
+  m.numbers("velocity",
+            "the velocity " + axes_text(dimension, "v") + " in m/s at a history factor of 1",
+            motion.velocity.data(), dimension);
+  if (dimension == 3)
+    m.numbers_or("spin", "the angular velocity [wx, wy, wz] in rad/s at a history factor of 1",
+                 motion.spin.data(), 3);
+  else
+    motion.spin[2] = m.number_or("spin", 0.0);
   motion.start = m.number_or("start", 0.0);
   m.range_check("start", motion.start, motion.start >= 0, "[0, inf) s");
   motion.history = read_history(m, case_file);
@@ -203,12 +208,10 @@ void read_bodies(TableReader& top, CaseSpec& c) {
         const bool space = c.dimension == 3;
         if (space) {
           b.shape3 = read_shape3(r, file);
-          if (b.kind == Kind::rigid) refuse_in_space(r, "kind", "a rigid body");
-          if (r.has("motion")) refuse_in_space(r, "motion", "a prescribed motion");
         } else {
           b.shape = read_shape(r, file);
         }
-        read_prescribed_motion(r, b, file);
+        read_prescribed_motion(r, b, file, c.dimension);
         read_body_motion(r, b, c.dimension);
         // Estimate in floating point first: integer lattice indices would
         // overflow for an absurdly small l0.

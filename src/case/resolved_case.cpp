@@ -192,7 +192,9 @@ std::string body_toml(const CaseSpec& c, const BodySpec& b) {
   if (b.hold != Hold::none) out += fmt::format("hold = \"{}\"\n", hold_name(b.hold));
   if (b.motion.on)
     out += fmt::format("\n[bodies.{}.motion]\nvelocity = {}\nspin = {}\nstart = {}\n", key(b.name),
-                       pair(b.motion.vx, b.motion.vy), format_number(b.motion.spin),
+                       numbers(b.motion.velocity.data(), c.dimension),
+                       c.dimension == 3 ? numbers(b.motion.spin.data(), 3)
+                                        : format_number(b.motion.spin[2]),
                        format_number(b.motion.start)) +
            history_toml(b.motion.history);
   if (b.has_mode)

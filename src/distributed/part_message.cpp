@@ -124,31 +124,55 @@ LoadHistory get_history(Reader& r) {
   return h;
 }
 
+// A rigid body's make-up and motion in message order (its pose goes as
+// pose_values).
+template <class Body>
+auto body_constants(Body& b) {
+  using Field = std::conditional_t<std::is_const_v<Body>, const double*, double*>;
+  auto& m = b.motion;
+  return std::vector<Field>{&b.xg0,
+                            &b.yg0,
+                            &b.zg0,
+                            &b.orbital_inertia,
+                            &b.orbital_moments[0],
+                            &b.orbital_moments[1],
+                            &b.orbital_moments[2],
+                            &b.axes[0],
+                            &b.axes[1],
+                            &b.axes[2],
+                            &b.axes[3],
+                            &b.spin_inertia,
+                            &b.mass_total,
+                            &b.work,
+                            &m.velocity[0],
+                            &m.velocity[1],
+                            &m.velocity[2],
+                            &m.spin[0],
+                            &m.spin[1],
+                            &m.spin[2],
+                            &m.start};
+}
+
 void put_body(Writer& w, const RigidBody& b) {
   w.put(b.name);
   w.put(b.range);
-  for (const double v : {b.xg0, b.yg0, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.orbital_inertia,
-                         b.spin_inertia, b.mass_total, b.work})
-    w.put(v);
-  w.put(b.dx0);
-  w.put(b.dy0);
-  const PrescribedMotion& m = b.motion;
-  for (const double v : {m.on ? 1.0 : 0.0, m.vx, m.vy, m.spin, m.start}) w.put(v);
-  put_history(w, m.history);
+  w.put(static_cast<double>(b.dimension));
+  w.put(pose_values(b));
+  for (const double* v : body_constants(b)) w.put(*v);
+  for (const std::vector<double>* v : {&b.dx0, &b.dy0, &b.dz0}) w.put(*v);
+  w.put(b.motion.on ? 1.0 : 0.0);
+  put_history(w, b.motion.history);
 }
 RigidBody get_body(Reader& r) {
   RigidBody b;
   b.name = r.get_string();
   b.range = r.get_range();
-  for (double* v : {&b.xg0, &b.yg0, &b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega,
-                    &b.orbital_inertia, &b.spin_inertia, &b.mass_total, &b.work})
-    *v = r.get();
-  b.dx0 = r.get_vector<double>();
-  b.dy0 = r.get_vector<double>();
-  PrescribedMotion& m = b.motion;
-  m.on = r.get() != 0.0;
-  for (double* v : {&m.vx, &m.vy, &m.spin, &m.start}) *v = r.get();
-  m.history = get_history(r);
+  b.dimension = r.get_as<int>();
+  set_pose_values(b, r.get_vector<double>().data());
+  for (double* v : body_constants(b)) *v = r.get();
+  for (std::vector<double>* v : {&b.dx0, &b.dy0, &b.dz0}) *v = r.get_vector<double>();
+  b.motion.on = r.get() != 0.0;
+  b.motion.history = get_history(r);
   return b;
 }
 

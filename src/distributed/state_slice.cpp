@@ -7,14 +7,16 @@ namespace mpsolid {
 namespace {
 // The evolving fields of a rigid body and of a load, as doubles: what moves
 // between ranks besides the particles.
-std::size_t fields_of(const RigidBody*) {
-  return 7;
+std::size_t fields_of(const RigidBody* b) {
+  return pose_size(b->dimension) + 1;
 }
 void read_fields(const RigidBody& b, double* out) {
-  for (const double x : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.work}) *out++ = x;
+  const std::vector<double> pose = pose_values(b);
+  *std::copy(pose.begin(), pose.end(), out) = b.work;
 }
 void write_fields(RigidBody& b, const double* in) {
-  for (double* x : {&b.xg, &b.yg, &b.angle, &b.vx, &b.vy, &b.omega, &b.work}) *x = *in++;
+  set_pose_values(b, in);
+  b.work = in[pose_size(b.dimension)];
 }
 // A pressure's running step: its nodes' positions at the step's start (its
 // forces follow from them, or from its given node forces).

@@ -38,7 +38,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
   }
   for (const auto& b : c.rigid_bodies) {
     h.text(b.name);
-    for (double v : {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega}) h.value(v);
+    for (double v : b.pose) h.value(v);
     if (b.work != 0) h.value(b.work);  // driven bodies only: older hashes stay
   }
   for (const auto& l : c.loads) {
@@ -87,7 +87,7 @@ Checkpoint capture_state(const SolverState& state) {
     c.particle_arrays.emplace_back(a.name, std::move(by_id));
   }
   for (const RigidBody& b : state.rigid_bodies)
-    c.rigid_bodies.push_back({b.name, b.xg, b.yg, b.angle, b.vx, b.vy, b.omega, b.work});
+    c.rigid_bodies.push_back({b.name, pose_values(b), b.work});
   for (const StepLoad& l : state.loads) {
     c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work,
                        l.cz_on, l.cz_last, l.surface.x});
@@ -125,6 +125,10 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     if (c.rigid_bodies[b].name != s.rigid_bodies[b].name)
       refuse(fmt::format("rigid body '{}' in the checkpoint, '{}' in the case",
                          c.rigid_bodies[b].name, s.rigid_bodies[b].name));
+    else if (c.rigid_bodies[b].pose.size() != pose_size(s.rigid_bodies[b].dimension))
+      refuse(fmt::format("rigid body '{}' has a pose of {} numbers in the checkpoint, {} here",
+                         c.rigid_bodies[b].name, c.rigid_bodies[b].pose.size(),
+                         pose_size(s.rigid_bodies[b].dimension)));
   if (c.loads.size() != s.loads.size())
     refuse(fmt::format("it has {} loads, the case has {}", c.loads.size(), s.loads.size()));
   for (std::size_t l = 0; l < c.loads.size(); ++l)
@@ -147,12 +151,7 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
   for (std::size_t b = 0; b < c.rigid_bodies.size(); ++b) {
     const RigidBodyState& from = c.rigid_bodies[b];
     RigidBody& to = s.rigid_bodies[b];
-    to.xg = from.xg;
-    to.yg = from.yg;
-    to.angle = from.angle;
-    to.vx = from.vx;
-    to.vy = from.vy;
-    to.omega = from.omega;
+    set_pose_values(to, from.pose.data());
     to.work = from.work;
   }
   for (std::size_t l = 0; l < c.loads.size(); ++l) {
@@ -216,10 +215,12 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     std::vector<double> pose;
     for (const auto& b : c.rigid_bodies) {
       body_names.push_back(b.name);
-      pose.insert(pose.end(), {b.xg, b.yg, b.angle, b.vx, b.vy, b.omega});
+      pose.insert(pose.end(), b.pose.begin(), b.pose.end());
     }
     bodies.write_strings("names", body_names);
-    bodies.write("state", pose, 6);
+    // In space the pose has its own dataset, so a plane build refuses it by name.
+    const bool space = !c.rigid_bodies.empty() && c.rigid_bodies[0].pose.size() == pose_size(3);
+    bodies.write(space ? "state3" : "state", pose, pose_size(space ? 3 : 2));
     std::vector<double> work;
     for (const auto& b : c.rigid_bodies) work.push_back(b.work);
     bodies.write("work", work);
@@ -307,10 +308,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
 
     const h5::Group bodies = file.open_group("rigid_bodies");
     const std::vector<std::string> body_names = bodies.read_strings("names");
-    const std::vector<double> pose = bodies.read<double>("state", body_names.size(), 6);
+    const bool space = bodies.has("state3");
+    const std::size_t width = pose_size(space ? 3 : 2);
+    const std::vector<double> pose =
+        bodies.read<double>(space ? "state3" : "state", body_names.size(), width);
     for (std::size_t b = 0; b < body_names.size(); ++b) {
-      const double* v = pose.data() + 6 * b;
-      c.rigid_bodies.push_back({body_names[b], v[0], v[1], v[2], v[3], v[4], v[5], 0.0});
+      const auto at = pose.begin() + static_cast<long>(width * b);
+      c.rigid_bodies.push_back({body_names[b], {at, at + static_cast<long>(width)}, 0.0});
     }
     // Checkpoints written before driven bodies hold no work: none was done.
     if (bodies.has("work")) {

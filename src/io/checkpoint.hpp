@@ -28,8 +28,8 @@ std::vector<NamedArray> particle_state_arrays(ParticleStore& p);
 
 struct RigidBodyState {
   std::string name;
-  double xg = 0, yg = 0, angle = 0, vx = 0, vy = 0, omega = 0;
-  double work = 0;  // a driven body's driver's
+  std::vector<double> pose;  // pose_values (src/core/rigid_body.hpp)
+  double work = 0;           // a driven body's driver's
 };
 
 struct LoadState {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 
@@ -23,8 +24,14 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
   cols.push_back("max_speed");
   if (spec.damping.coefficient > 0) cols.push_back("damping_loss");
   if (state.contact.enabled()) cols.insert(cols.end(), {"contact_energy", "contact_min_distance"});
+  // A rigid body's centroid displacement and rotation from the start: in
+  // space the quaternion and the angular velocity.
+  const std::vector<const char*> pose =
+      space ? std::vector<const char*>{".x",  ".y",  ".z",       ".qw",      ".qx",
+                                       ".qy", ".qz", ".omega_x", ".omega_y", ".omega_z"}
+            : std::vector<const char*>{".x", ".y", ".theta"};
   for (const RigidBody& b : state.rigid_bodies) {
-    for (const char* suffix : {".x", ".y", ".theta"}) cols.push_back(b.name + suffix);
+    for (const char* suffix : pose) cols.push_back(b.name + suffix);
     if (b.motion.on) cols.push_back(b.name + ".work");  // its driver's
   }
   const std::vector<const char*> extent =
@@ -64,7 +71,12 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
   for (const RigidBody& b : state.rigid_bodies) {
     row.push_back(b.xg - b.xg0);
     row.push_back(b.yg - b.yg0);
-    row.push_back(b.angle);
+    if (space) {
+      const std::array<double, 4> q = rotation_from_start(b);
+      row.insert(row.end(), {b.zg - b.zg0, q[0], q[1], q[2], q[3], b.omega_x, b.omega_y, b.omega});
+    } else {
+      row.push_back(b.angle);
+    }
     if (b.motion.on) row.push_back(b.work);
   }
   const ParticleStore& p = state.particles;

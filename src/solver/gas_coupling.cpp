@@ -162,9 +162,9 @@ double GasCoupling::steps_within_half_a_cell(const SolverState& state, double dt
     const double t = (static_cast<double>(state.step) + k) * dt;
     double speed = fastest;
     for (const auto& [r, reach] : driven)
-      speed = std::max(
-          speed, std::abs(r->motion.factor(t, dt)) *
-                     (std::hypot(r->motion.vx, r->motion.vy) + std::abs(r->motion.spin) * reach));
+      speed = std::max(speed, std::abs(r->motion.factor(t, dt)) *
+                                  (std::hypot(r->motion.velocity[0], r->motion.velocity[1]) +
+                                   std::abs(r->motion.spin[2]) * reach));
     travel += speed * dt;
     if (travel > 0.5 * spec_.cell) return std::max(k, 1.0);
   }

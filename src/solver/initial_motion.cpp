@@ -49,10 +49,7 @@ void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotati
     if (body.kind == Kind::rigid) {
       for (RigidBody& rb : s.rigid_bodies)
         if (rb.name == body.name) {
-          rb.vx = body.velocity[0];
-          rb.vy = body.velocity[1];
-          rb.omega = body.spin[2];
-          place_rigid_particles(p, rb, with_rotation);
+          set_rigid_motion(p, rb, body.velocity, body.spin, with_rotation);
         }
       continue;
     }

@@ -8,7 +8,8 @@
 #    run, bit for bit (tests/tools/compare_runs.py);
 #  - a resume can go past the old end: run to T, resume to 2T = run to 2T;
 #    also with contact, stopped mid-collision (cases/colliding_blocks.toml),
-#    and in space (cases/spinning_cube.toml, a quaternion per particle);
+#    and in space (cases/spinning_cube.toml, a quaternion per particle; a
+#    rigid sphere of cases/colliding_spheres.toml mid-collision);
 #  - a missing, damaged or foreign checkpoint, or a --set that changes the
 #    case, is refused with exit 2 and a clear message, leaving the folder as
 #    it was.
@@ -239,6 +240,18 @@ SHALF=$TMP/space_half
 mp space_half run "$SPACE" "${SSETS[@]}" --set time.end=0.02 --out "$SHALF" --threads 2
 mp space_extend resume "$SHALF" --set time.end=0.04 --threads 1
 resumed_as_reference space "stopped at 2 threads, resumed at 1" "$SREF" "$SHALF"
+
+# A rigid body in space: the struck sphere made rigid, stopped mid-collision
+# at 2 threads and resumed at 1, keeps its pose, quaternion and angular
+# momentum to the bit.
+RSETS=(--set 'bodies.b.kind="rigid"' --set 'model="paper"' --set output.frame_interval=5e-4
+  --set output.history_interval=5e-5)
+RREF=$TMP/rigid_space_reference
+mp rigid_space_reference run cases/colliding_spheres.toml "${RSETS[@]}" --set time.end=2e-3 --out "$RREF" --threads 1
+RHALF=$TMP/rigid_space_half
+mp rigid_space_half run cases/colliding_spheres.toml "${RSETS[@]}" --set time.end=1e-3 --out "$RHALF" --threads 2
+mp rigid_space_extend resume "$RHALF" --set time.end=2e-3 --threads 1
+resumed_as_reference rigid_space "a rigid sphere stopped mid-collision at 2 threads, resumed at 1" "$RREF" "$RHALF"
 
 # ---- refusals ---------------------------------------------------------------------
 

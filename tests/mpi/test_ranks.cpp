@@ -159,6 +159,21 @@ TEST(Ranks, DecomposedContactInSpaceGivesTheSerialBits) {
   expect_serial_bits(load_case(testing::source_path("cases/colliding_spheres.toml")), 500);
 }
 
+// Rigid bodies in space, each kept whole on a rank: the struck sphere made
+// rigid (in the paper's model its particles spin with it), and the brick
+// tumbling alone.
+TEST(Ranks, DecomposedRigidBodiesInSpaceGiveTheSerialBits) {
+  set_thread_count(1);
+  for (const char* model : {"finite_strain", "paper"}) {
+    SCOPED_TRACE(model);
+    expect_serial_bits(
+        load_case(testing::source_path("cases/colliding_spheres.toml"),
+                  {"bodies.b.kind=\"rigid\"", std::string("model=\"") + model + "\""}),
+        500);
+  }
+  expect_serial_bits(load_case(testing::source_path("cases/tumbling_brick.toml")), 300);
+}
+
 // A ramped pressure on the plate's face: the plate takes the pressure's
 // forces; the rod, cut across the ranks, the plate's push.
 TEST(Ranks, DecomposedPressureGivesTheSerialBits) {

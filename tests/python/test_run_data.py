@@ -203,5 +203,50 @@ class SpaceRun(unittest.TestCase):
             self.assertEqual(h["probe.corner." + axis][-1], corner[k])
 
 
+class RigidSpaceRun(unittest.TestCase):
+    """The tumbling brick (cases/tumbling_brick.toml) through its first flip:
+    its history's pose columns, the frames at its pose, and history.png's
+    panel of the body-axes rates."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.dir = os.path.join(cls.tmp.name, "brick")
+        r = subprocess.run([executable(), "run", os.path.join(ROOT, "cases", "tumbling_brick.toml"),
+                            "--out", cls.dir, "--set", "time.end=2.5",
+                            "--set", "output.frame_interval=0.5"],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_history_holds_the_pose_and_the_flip(self):
+        from mpsolid import plot
+        run = mpsolid.open_run(self.dir)
+        h = run.history_array
+        for name in ("brick.x", "brick.y", "brick.z", "brick.qw", "brick.qx", "brick.qy",
+                     "brick.qz", "brick.omega_x", "brick.omega_y", "brick.omega_z"):
+            self.assertIn(name, h.dtype.names)
+        self.assertNotIn("brick.theta", h.dtype.names)
+        q = np.stack([h["brick.q" + a] for a in "wxyz"], axis=1)
+        self.assertLess(np.abs(np.linalg.norm(q, axis=1) - 1).max(), 1e-14)
+        # In its own axes the spin about y goes from +10 to -10 rad/s.
+        columns = {c: h[c] for c in h.dtype.names}
+        _, about_y, _ = plot.body_axes_rates(columns, "brick")
+        self.assertAlmostEqual(about_y[0], 10.0, delta=1e-9)
+        self.assertLess(about_y[-1], -9.9)
+        # The last frame's particles sit at the pose: the quaternion of every
+        # particle is the body's, and their centroid the body's.
+        last = run.frames[-1]
+        self.assertLess(np.abs(last.orientation - q[-1]).max(), 1e-15)
+        self.assertLess(np.abs(last.position.mean(axis=0)).max(), 1e-15)
+        drawn = plot.plot_run(self.dir, frames=2)
+        names = [p["name"] for p in drawn["history"]["panels"]]
+        self.assertIn("spin", names)
+        self.assertNotIn("rigid", names)  # it does not move
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

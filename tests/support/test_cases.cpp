@@ -122,6 +122,11 @@ double max_abs(const Eigen::Matrix3Xd& m) {
   return out;
 }
 
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
 bool same_bits(const ParticleStore& a, const ParticleStore& b) {
   bool same = true;
   for_each_particle_member([&](const auto& info, auto member) {

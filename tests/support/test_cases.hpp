@@ -60,5 +60,7 @@ double max_abs(const Eigen::Matrix3Xd& m);
 
 // Every state and work array of two stores is equal bit for bit.
 bool same_bits(const ParticleStore& a, const ParticleStore& b);
+// Two lists of numbers equal bit for bit.
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b);
 
 }  // namespace mpsolid::testing

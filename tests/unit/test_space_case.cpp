@@ -180,8 +180,11 @@ TEST(SpaceCase, RefusesWhatItCannotRunWithTheKeyAndWhatIsAllowed) {
        "1]\ny = [0, 1]\n",
        "'rectangle' is a plane shape"},
       {"\n[bodies.b]\nkind = \"rigid\"\nmaterial = \"rubber\"\nx = [0, 0.004]\ny = [0, "
-       "0.004]\nz = [0, 0.004]\n",
-       "bodies.b.kind: a rigid body is not available in space"},
+       "0.004]\nz = [0, 0.004]\n\n[bodies.b.motion]\nvelocity = [1, 0]\n",
+       "bodies.b.motion.velocity: expected three numbers"},
+      {"\n[bodies.b]\nkind = \"rigid\"\nmaterial = \"rubber\"\nx = [0, 0.004]\ny = [0, "
+       "0.004]\nz = [0, 0.004]\n\n[bodies.b.motion]\nvelocity = [1, 0, 0]\nspin = 2.0\n",
+       "bodies.b.motion.spin: expected three numbers"},
       {box + "velocity = [1, 2]\n", "bodies.b.velocity: expected three numbers"},
       {box + "spin = 3.0\n", "bodies.b.spin: expected three numbers"},
       {box + "hold = \"w\"\n", "(allowed: none, x, y, z)"},
