@@ -64,9 +64,10 @@ def parse_args():
     parser.add_argument("--reference", metavar="FILE.csv",
                         help="a reference curve drawn over the rigid-body displacement: "
                              "columns t, x in s and m (a header row allowed)")
-    parser.add_argument("--section", type=float, metavar="Z",
-                        help="a run in space: draw the layer of particles at z = Z (m) at the "
-                             "start (a material section) instead of them all seen along z")
+    parser.add_argument("--section", metavar="[AXIS=]VALUE",
+                        help="a run in space: draw the layer of particles at z = VALUE (m), or "
+                             "on the plane x=VALUE or y=VALUE, at the start (a material "
+                             "section) instead of them all seen along z")
     parser.add_argument("--describe", action="store_true",
                         help="print what was drawn as JSON on stdout (the PNGs are still written)")
     return parser.parse_args()

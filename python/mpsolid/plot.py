@@ -86,35 +86,63 @@ def history_to_draw(folder):
     return columns
 
 
+# A section across each axis: the position columns it draws (across the
+# section, then the axis itself last) and their names.
+SECTION_AXES = {"x": ((1, 2, 0), ("y", "z")), "y": ((0, 2, 1), ("x", "z")),
+                "z": ((0, 1, 2), ("x", "y"))}
+
+
 class Section:
     """A frame cut to the particles of `keep` (a boolean mask in id order):
-    read as the frame is, field by field."""
+    read as the frame is, field by field, its positions in the section's
+    plane (`axis_names`) first."""
 
-    def __init__(self, frame, keep):
+    def __init__(self, frame, keep, axis="z"):
         self._frame, self._keep = frame, keep
+        self._columns, self.axis_names = SECTION_AXES[axis]
         self.time, self.step = frame.time, frame.step
 
     def __getitem__(self, name):
-        return self._frame[name][self._keep]
+        values = self._frame[name][self._keep]
+        return values[:, self._columns] if name == "position" else values
 
     def fields(self):
         return self._frame.fields()
 
 
-def cut_to_section(frames, z, l0):
+def parse_section(section):
+    """A section as (axis, value in m): a number is a z, "x=0.05" a plane
+    across x; raises PlotError for anything else."""
+    if isinstance(section, (int, float)):
+        return "z", float(section)
+    axis, _, value = str(section).rpartition("=")
+    axis = axis.strip() or "z"
+    try:
+        at = float(value)
+    except ValueError:
+        at = None
+    if axis not in SECTION_AXES or at is None or not np.isfinite(at):
+        raise PlotError(f"--section {section}: expected Z, or x=X, y=Y or z=Z (m)")
+    return axis, at
+
+
+def cut_to_section(frames, section, l0):
     """The frames cut to one layer of particles: those within half a spacing
-    of the particle nearest z = `z` in the first frame (the same particles
-    in every panel: a material section), and that layer's z; raises
-    PlotError for a plane run or a z off every body."""
+    of the particle nearest the plane (`section`: see parse_section) in the
+    first frame (the same particles in every panel: a material section),
+    and that layer's (axis, value); raises PlotError for a plane run or a
+    plane off every body."""
+    axis, at = parse_section(section)
     position = frames[0]["position"]
     if position.shape[1] != 3:
         raise PlotError("--section needs a run in space (dimension = 3)")
-    nearest = position[np.argmin(np.abs(position[:, 2] - z)), 2]
-    if abs(nearest - z) > l0:
-        raise PlotError(f"--section {z:g}: no particle within l0 = {l0:g} m of that z "
-                        f"(z from {position[:, 2].min():g} to {position[:, 2].max():g} m)")
-    keep = np.abs(position[:, 2] - nearest) < 0.5 * l0
-    return [Section(frame, keep) for frame in frames], float(nearest)
+    column = position[:, "xyz".index(axis)]
+    nearest = column[np.argmin(np.abs(column - at))]
+    if abs(nearest - at) > l0:
+        raise PlotError(f"--section {axis}={at:g}: no particle within l0 = {l0:g} m of that "
+                        f"{axis} ({axis} from {column.min():g} to {column.max():g} m)")
+    keep = np.abs(column - nearest) < 0.5 * l0
+    return [Section(frame, keep, axis) for frame in frames], (axis, float(nearest))
 
 
 def pick(count, limit):
@@ -401,11 +429,14 @@ class FrameView:
         pad = 1.5 * l0 * 1e3
         x_range = (every[:, 0].min() - pad, every[:, 0].max() + pad)
         y_range = (every[:, 1].min() - pad, every[:, 1].max() + pad)
+        # The page's first and second axes: x and y, or a section's own.
+        self.names = getattr(frames[0], "axis_names", ("x", "y"))
+        first, second = (f"{name} (mm)" for name in self.names)
         self.x_along = (x_range[1] - x_range[0]) > 4.0 * (y_range[1] - y_range[0])
         if self.x_along:
-            self.across, self.down, self.labels = x_range, y_range[::-1], ("x (mm)", "y (mm)")
+            self.across, self.down, self.labels = x_range, y_range[::-1], (first, second)
         else:
-            self.across, self.down, self.labels = y_range, x_range, ("y (mm)", "x (mm)")
+            self.across, self.down, self.labels = y_range, x_range, (second, first)
         self.width = self.across[1] - self.across[0]
         self.height = abs(self.down[1] - self.down[0])
 
@@ -628,7 +659,7 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     seen = ", seen along z (the nearer particles over the farther)" if case.get(
         "dimension", 2) == 3 else ""
     if section is not None:
-        seen = f", the layer at z = {number(section * 1e3)} mm at the start"
+        seen = f", the layer at {section[0]} = {number(section[1] * 1e3)} mm at the start"
     heading, top = header_lines(
         layout.fig_w, title, f"particles at {shown}{seen}, coloured by {COLOUR_WORDS[color_by]}",
         blowup_words(blowup) + "; the last frame is the last good state" if blowup else None)
@@ -655,8 +686,12 @@ def plot_frames(folder, frames, body_names, l0, total, color_by, dpi, title, blo
     save_png(fig, out, dpi)
     return {"file": out, "size_px": png_size(out), "rows": layout.rows,
             "columns": layout.columns,
-            "orientation": "x across the page" if view.x_along else "x down the page",
-            "color": color_by, "title": title, "section_z_m": section, "panels": panels,
+            "orientation": f"{view.names[0]} " + ("across" if view.x_along else "down")
+                           + " the page",
+            "color": color_by, "title": title,
+            "section": None if section is None else {"axis": section[0], "at_m": section[1]},
+            "section_z_m": section[1] if section and section[0] == "z" else None,
+            "panels": panels,
             "colorbar": colorbar,
             "legend": labels, "footnote": footnote,
             "outlines": {b: len(lines) for b, lines in shapes["outlines"].items()},
@@ -919,8 +954,9 @@ def plot_run(folder, color="pressure", frames=12, dpi=150, reference=None, secti
     """Writes FOLDER/frames.png and FOLDER/history.png of a run folder:
     `color` pressure, strain or body; at most `frames` frames; `reference` a
     CSV file of t, x (s, m) drawn over the rigid-body displacement; in space
-    `section` a z (m): the layer of particles there at the start instead of
-    all of them seen along z. Returns what was drawn, {"frames": ...,
+    `section` a z (m), or "x=X", "y=Y" or "z=Z": the layer of particles on
+    that plane at the start instead of all of them seen along z. Returns
+    what was drawn, {"frames": ...,
     "history": ...}; raises PlotError."""
     check_folder(folder)
     curve = (reference, read_reference(reference)) if reference else None

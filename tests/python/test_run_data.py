@@ -185,6 +185,14 @@ class SpaceRun(unittest.TestCase):
         self.assertAlmostEqual(drawn["frames"]["section_z_m"], -0.004, delta=1e-15)
         with self.assertRaises(plot.PlotError):
             plot.plot_run(self.dir, section=0.5)
+        # Across x: the layer nearest x = 1 mm (sites at +-4 mm), drawn in y and z.
+        drawn = plot.plot_run(self.dir, frames=2, section="x=0.001")
+        self.assertEqual(drawn["frames"]["section"], {"axis": "x", "at_m": 0.004})
+        self.assertIsNone(drawn["frames"]["section_z_m"])
+        self.assertIn(drawn["frames"]["orientation"], ("y down the page", "y across the page"))
+        for bad in ("w=0.0", "x=", "y=abc", "x=0.5"):
+            with self.assertRaises(plot.PlotError):
+                plot.plot_run(self.dir, section=bad)
 
     def test_history_has_the_vector_momenta_and_the_probe_in_space(self):
         run = mpsolid.open_run(self.dir)
