@@ -6,6 +6,11 @@ plain harmonic bond network with the same particles and bonds
   bench/compare_lammps.py [--l0 2e-3 1e-3 5e-4 2.5e-4] [--threads 1 2] [--reps 5]
                           [--models paper paper_conservative finite_strain]
                           [--work 2.5e7] [--out out/bench] [--install-lammps]
+                          [--case cases/shock_rod.toml]
+
+The case is the paper's rod (cases/shock_rod.toml) or, in space, its 3D form
+(--case cases/shock_rod_3d.toml: 32 bonds per interior particle); both codes
+step it at dt = 1e-8 s.
 
 For every repetition, size and thread count it runs mpsolid and LAMMPS back
 to back (their order alternates between repetitions), so that the machine's
@@ -40,7 +45,7 @@ import sys
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 CASE = REPO / "cases" / "shock_rod.toml"
-DT = 1.0e-8  # the case's dt (checked against run.json)
+DT = 1.0e-8  # both codes' dt (checked against run.json)
 sys.path.insert(0, str(REPO / "tools"))
 from source_package import mpsolid_module  # noqa: E402
 
@@ -115,12 +120,12 @@ def fixed_threads_flag(exe):
     return ["--fixed-threads"] if "--fixed-threads" in run([exe, "run", "--help"]).stdout else []
 
 
-def mpsolid_command(exe, folder, l0, steps, threads, model, fixed):
+def mpsolid_command(exe, folder, l0, steps, threads, model, fixed, case=CASE):
     """The run of `steps` steps of the case at l0 with `model` (no frames
     between, checkpoints only at the ends)."""
     end = steps * DT
-    return [exe, "run", CASE, "--out", folder, "--threads", threads, *fixed,
-            "--set", f"l0={l0!r}",
+    return [exe, "run", case, "--out", folder, "--threads", threads, *fixed,
+            "--set", f"l0={l0!r}", "--set", f"time.dt={DT!r}",
             "--set", f"model={model}",
             "--set", f"time.end={end!r}",
             "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"]
@@ -142,9 +147,9 @@ def mpsolid_result(folder, steps):
             "bonds": rep["bonds"], "git_commit": rep["git_commit"]}
 
 
-def run_mpsolid(exe, folder, l0, steps, threads, model, fixed, launcher=()):
+def run_mpsolid(exe, folder, l0, steps, threads, model, fixed, launcher=(), case=CASE):
     shutil.rmtree(folder, ignore_errors=True)  # the folder is this script's: a fresh run
-    run([*launcher, *mpsolid_command(exe, folder, l0, steps, threads, model, fixed)])
+    run([*launcher, *mpsolid_command(exe, folder, l0, steps, threads, model, fixed, case)])
     return mpsolid_result(folder, steps)
 
 
@@ -169,6 +174,8 @@ def main():
                     help="particle-steps per run (default 2.5e7: a few seconds)")
     ap.add_argument("--out", type=pathlib.Path, default=REPO / "out" / "bench")
     ap.add_argument("--mpsolid", type=pathlib.Path, default=REPO / "build/release/mpsolid")
+    ap.add_argument("--case", type=pathlib.Path, default=CASE,
+                    help="the rod in the plane (default) or in space (cases/shock_rod_3d.toml)")
     ap.add_argument("--install-lammps", action="store_true",
                     help="apt-get install lammps if lmp is missing")
     args = ap.parse_args()
@@ -188,11 +195,11 @@ def main():
     for l0 in args.l0:
         folder = runs_dir / f"lammps_l0_{l0 * 1e3:g}mm"
         # The particle count sets the steps; the generator knows it.
-        probe = json.loads(run([sys.executable, REPO / "bench/lammps/make_input.py", "--out",
-                                folder, "--l0", repr(l0), "--steps", "0"]).stdout)
+        generate = [sys.executable, REPO / "bench/lammps/make_input.py", "--out", folder,
+                    "--case", args.case, "--l0", repr(l0), "--dt", repr(DT)]
+        probe = json.loads(run([*generate, "--steps", "0"]).stdout)
         steps = max(200, round(args.work / probe["atoms"]))
-        info = json.loads(run([sys.executable, REPO / "bench/lammps/make_input.py", "--out",
-                               folder, "--l0", repr(l0), "--steps", str(steps)]).stdout)
+        info = json.loads(run([*generate, "--steps", str(steps)]).stdout)
         sizes.append({"l0": l0, "steps": steps, "folder": folder, "info": info})
 
     started = datetime.datetime.now().isoformat(timespec="seconds")
@@ -213,7 +220,7 @@ def main():
                         folder = (runs_dir /
                                   f"mpsolid_{code}_l0_{size['l0'] * 1e3:g}mm_t{threads}")
                         r = run_mpsolid(args.mpsolid, folder, size["l0"], size["steps"], threads,
-                                        code, fixed)
+                                        code, fixed, case=args.case)
                     if r["particles"] != size["info"]["atoms"]:
                         fail(f"{code} ran {r['particles']} particles, expected "
                              f"{size['info']['atoms']}")

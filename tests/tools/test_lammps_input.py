@@ -3,7 +3,8 @@
 mpsolid's particles and bonds: LAMMPS sets the paper's rod up (run 0), writes
 its data file, and every interior atom has 12 bonds, 4 at each distance
 (l0, sqrt(2) l0, 2 l0), the total equals the bond count mpsolid reports in
-run.json for the same case, and the stiffnesses are k_ij / 2 of the bonds.
+run.json for the same case, and the stiffnesses are k_ij / 2 of the bonds;
+and the same counts for the rod in space (32 bonds per interior atom).
 
   test_lammps_input.py MPSOLID_EXECUTABLE
 
@@ -91,7 +92,43 @@ def main():
             K, r0 = coeffs[t]
             check(abs(K - k_ij / 2) < 1e-5 * K and abs(r0 - r * l0) < 1e-5 * r0,
                   f"bond type {t}: K = {K}, r0 = {r0}; expected {k_ij / 2}, {r * l0}")
-    print(f"OK: {len(atoms)} atoms, {len(bonds)} bonds, {len(full)} interior atoms with 12")
+        space = check_space(tmp, lmp, mpsolid)
+    print(f"OK: {len(atoms)} atoms, {len(bonds)} bonds, {len(full)} interior atoms with 12; "
+          f"in space {space}")
+
+
+def check_space(tmp, lmp, mpsolid):
+    """The rod in space (cases/shock_rod_3d.toml at l0 = 4 mm): mpsolid's
+    particles and bonds, every interior atom with 6 + 12 + 8 + 6 bonds at
+    l0, sqrt(2), sqrt(3) and 2 l0."""
+    case = REPO / "cases/shock_rod_3d.toml"
+    summary = json.loads(subprocess.run(
+        [sys.executable, REPO / "bench/lammps/make_input.py", "--out", tmp / "lmp3",
+         "--case", case, "--l0", "0.004", "--dt", "1e-8", "--steps", "0",
+         "--write-data", tmp / "lmp3/after.data"],
+        check=True, capture_output=True, text=True).stdout)
+    subprocess.run([lmp, "-nocite", "-screen", "none", "-log", "log.lammps", "-in", "in.rod"],
+                   cwd=tmp / "lmp3", check=True)
+    subprocess.run([mpsolid, "run", case, "--out", tmp / "ms3", "--threads", "1", "--set",
+                    "l0=0.004", "--set", "time.dt=1e-8", "--set", "time.end=1e-8"],
+                   check=True, capture_output=True)
+    report = json.loads((tmp / "ms3/run.json").read_text())
+    data = sections(tmp / "lmp3/after.data")
+    atoms, bonds = data["Atoms"], data["Bonds"]
+    check(len(atoms) == report["particles"] == summary["atoms"],
+          f"in space, atoms: LAMMPS {len(atoms)}, mpsolid {report['particles']}")
+    check(len(bonds) == report["bonds"] == summary["bonds"],
+          f"in space, bonds: LAMMPS {len(bonds)}, mpsolid {report['bonds']}")
+    per_atom = collections.defaultdict(collections.Counter)
+    for _, btype, a, b in bonds:
+        per_atom[a][btype] += 1
+        per_atom[b][btype] += 1
+    full = [c for c in per_atom.values() if sum(c.values()) == 32]
+    check(len(full) == summary["interior"] > 0,
+          f"in space, {len(full)} atoms with 32 bonds, {summary['interior']} interior sites")
+    check(all(c == {"1": 6, "2": 12, "3": 8, "4": 6} for c in full),
+          "in space, an interior atom without 6, 12, 8 and 6 bonds at l0, sqrt 2, sqrt 3, 2 l0")
+    return f"{len(atoms)} atoms, {len(bonds)} bonds, {len(full)} interior atoms with 32"
 
 
 if __name__ == "__main__":
