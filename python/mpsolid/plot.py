@@ -584,7 +584,10 @@ def mark_last_good_state(ax, title, blowup, view, ring_size):
             bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=1.5))
     if not blowup.get("position"):
         return None
-    px, py = (v * 1e3 for v in blowup["position"])
+    # In space the two coordinates of the page's axes (a section's own).
+    where = blowup["position"]
+    px, py = (where["xyz".index(name)] * 1e3 for name in view.names) if len(where) == 3 else (
+        v * 1e3 for v in where)
     ax.scatter(*view.page(np.array([[px, py]])), s=ring_size, facecolors="none",
                edgecolors=BLOWUP_COLOUR, linewidths=1.6, zorder=5)
     return [px, py]

@@ -154,8 +154,9 @@ def displacement_history(folder, column, out=None, measured=None, measured_label
     ax.grid(alpha=0.3)
     ax.legend(fontsize=9, frameon=False)
     case = run.case
-    ax.set_title(f"{case.get('name', '')}: {column} (l0 {1e3 * case.get('l0', 0):g} mm, gas cell "
-                 f"{1e3 * case.get('gas', {}).get('cell', 0):g} mm)", fontsize=11)
+    cell = case.get("gas", {}).get("cell")  # a run without a gas has no cell to name
+    ax.set_title(f"{case.get('name', '')}: {column} (l0 {1e3 * case.get('l0', 0):g} mm"
+                 + (f", gas cell {1e3 * cell:g} mm)" if cell else ")"), fontsize=11)
     fig.tight_layout()
     path = out or os.path.join(folder, "displacement.png")
     save_png(fig, path, dpi)

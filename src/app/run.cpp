@@ -35,12 +35,24 @@ std::string body_of(Simulation& sim, std::size_t i) {
   return sim.spec().bodies[static_cast<std::size_t>(sim.particles().body[i])].name;
 }
 
+// A particle's position (`initial`: its reference one), with z in space.
+std::vector<double> position_of(const ParticleStore& p, std::size_t i, bool initial) {
+  if (p.dimension == 3)
+    return initial ? std::vector<double>{p.x0[i], p.y0[i], p.z0[i]}
+                   : std::vector<double>{p.x[i], p.y[i], p.z[i]};
+  return initial ? std::vector<double>{p.x0[i], p.y0[i]} : std::vector<double>{p.x[i], p.y[i]};
+}
+
+std::string in_mm(const std::vector<double>& position) {
+  std::vector<std::string> parts;
+  for (const double v : position) parts.push_back(fmt::format("{:.4g}", 1e3 * v));
+  return fmt::format("({}) mm", fmt::join(parts, ", "));
+}
+
 std::string describe_particle(Simulation& sim, std::size_t i) {
   const ParticleStore& p = sim.particles();
-  return fmt::format(
-      "particle {} (body {}, initial position ({:.4g}, {:.4g}) mm, now ({:.4g}, "
-      "{:.4g}) mm)",
-      p.id[i], body_of(sim, i), 1e3 * p.x0[i], 1e3 * p.y0[i], 1e3 * p.x[i], 1e3 * p.y[i]);
+  return fmt::format("particle {} (body {}, initial position {}, now {})", p.id[i], body_of(sim, i),
+                     in_mm(position_of(p, i, true)), in_mm(position_of(p, i, false)));
 }
 
 // Where, when and which criterion, in words (the state is the failing one).
@@ -74,8 +86,8 @@ Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_
           {"step", sim.step()},
           {"particle_id", p.id[i]},
           {"body", body_of(sim, i)},
-          {"initial_position", {p.x0[i], p.y0[i]}},
-          {"position", {p.x[i], p.y[i]}},
+          {"initial_position", position_of(p, i, true)},
+          {"position", position_of(p, i, false)},
           {"neighbor_id", v.has_neighbor ? Json(p.id[v.neighbor]) : Json(nullptr)},
           {"value", v.value},
           {"last_good_step", last_good_step},

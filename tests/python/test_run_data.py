@@ -194,6 +194,27 @@ class SpaceRun(unittest.TestCase):
             with self.assertRaises(plot.PlotError):
                 plot.plot_run(self.dir, section=bad)
 
+    def test_a_blow_up_in_space_names_the_particle_in_three_coordinates(self):
+        from mpsolid import plot
+        folder = os.path.join(self.tmp.name, "blowup")
+        r = subprocess.run([executable(), "run", os.path.join(ROOT, "cases", "spinning_cube.toml"),
+                            "--out", folder, "--set", "l0=0.008", "--set", "time.dt=2e-4",
+                            "--set", "time.end=0.02", "--set", "stability.check_interval=1"],
+                           capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("initial position (", r.stderr + r.stdout)
+        info = mpsolid.open_run(folder).info
+        self.assertEqual(info["outcome"], "unstable")
+        diagnosis = info["diagnosis"]
+        self.assertEqual(len(diagnosis["initial_position"]), 3)
+        self.assertEqual(len(diagnosis["position"]), 3)
+        # The ring goes where the section's axes put the particle.
+        drawn = plot.plot_run(folder, frames=2, section="y=0.0")
+        ring = drawn["frames"]["panels"][-1].get("ring_mm")
+        self.assertIsNotNone(ring)
+        self.assertAlmostEqual(ring[0], 1e3 * diagnosis["position"][0], places=9)  # x
+        self.assertAlmostEqual(ring[1], 1e3 * diagnosis["position"][2], places=9)  # z
+
     def test_history_has_the_vector_momenta_and_the_probe_in_space(self):
         run = mpsolid.open_run(self.dir)
         h = run.history_array
