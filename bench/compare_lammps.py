@@ -128,7 +128,8 @@ def mpsolid_command(exe, folder, l0, steps, threads, model, fixed, case=CASE):
             "--set", f"l0={l0!r}", "--set", f"time.dt={DT!r}",
             "--set", f"model={model}",
             "--set", f"time.end={end!r}",
-            "--set", f"output.frame_interval={end!r}", "--set", "output.checkpoint_interval=0"]
+            "--set", f"output.frame_interval={end!r}", "--set", f"output.history_interval={end!r}",
+            "--set", "output.checkpoint_interval=0"]
 
 
 def mpsolid_result(folder, steps):
