@@ -42,6 +42,15 @@ def sections(path):
     return out
 
 
+def bonds_per_atom(bonds):
+    """{atom id: Counter(bond type)} of a data file's Bonds rows."""
+    per_atom = collections.defaultdict(collections.Counter)
+    for _, btype, a, b in bonds:
+        per_atom[a][btype] += 1
+        per_atom[b][btype] += 1
+    return per_atom
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: test_lammps_input.py MPSOLID_EXECUTABLE")
@@ -72,10 +81,7 @@ def main():
         check(len(bonds) == report["bonds"] == summary["bonds"],
               f"bonds: LAMMPS {len(bonds)}, mpsolid {report['bonds']}")
 
-        per_atom = collections.defaultdict(collections.Counter)  # id -> Counter(type)
-        for _, btype, a, b in bonds:
-            per_atom[a][btype] += 1
-            per_atom[b][btype] += 1
+        per_atom = bonds_per_atom(bonds)
         full = [c for c in per_atom.values() if sum(c.values()) == 12]
         check(len(full) == summary["interior"] > 0,
               f"{len(full)} atoms with 12 bonds, {summary['interior']} interior sites")
@@ -119,11 +125,7 @@ def check_space(tmp, lmp, mpsolid):
           f"in space, atoms: LAMMPS {len(atoms)}, mpsolid {report['particles']}")
     check(len(bonds) == report["bonds"] == summary["bonds"],
           f"in space, bonds: LAMMPS {len(bonds)}, mpsolid {report['bonds']}")
-    per_atom = collections.defaultdict(collections.Counter)
-    for _, btype, a, b in bonds:
-        per_atom[a][btype] += 1
-        per_atom[b][btype] += 1
-    full = [c for c in per_atom.values() if sum(c.values()) == 32]
+    full = [c for c in bonds_per_atom(bonds).values() if sum(c.values()) == 32]
     check(len(full) == summary["interior"] > 0,
           f"in space, {len(full)} atoms with 32 bonds, {summary['interior']} interior sites")
     check(all(c == {"1": 6, "2": 12, "3": 8, "4": 6} for c in full),
