@@ -1,6 +1,6 @@
-// The per-particle gather kernels of the corrected-gradient models
-// (kernels/gradient_gather_model.hpp): a step of a free 3D rubber cube of
-// n^3 particles (finite_strain), and in the plane the rod's step with the
+// The per-particle gather kernels in space (kernels/gradient_gather_model.hpp,
+// kernels/paper_gather_model.hpp): a step of a free 3D rubber cube of n^3
+// particles (finite_strain, paper), and in the plane the rod's step with the
 // gather kernel beside the slot kernel it could replace. Rates in
 // particle-steps per second.
 #include <fmt/format.h>
@@ -11,6 +11,7 @@
 #include "bench/registry.hpp"
 #include "kernels/finite_strain_model.hpp"
 #include "kernels/gradient_gather_model.hpp"
+#include "kernels/paper_gather_model.hpp"
 #include "neighbor/bond_search.hpp"
 #include "src/core/region3.hpp"
 #include "src/solver/simulation.hpp"
@@ -74,6 +75,15 @@ void space_step(benchmark::State& state, int n, int threads) {
   time_steps(state, model, s, dt, threads);
 }
 
+// The same cube with the paper model (a quaternion per particle).
+void space_paper_step(benchmark::State& state, int n, int threads) {
+  set_thread_count(threads);
+  SolverState s = rubber_cube(n);
+  PaperGatherModel<false> model(s.particles, s.bonds, {});
+  const double dt = 0.2e-3 / std::sqrt((2.8e7 + 2 * 9.4e5) / 1100.0);
+  time_steps(state, model, s, dt, threads);
+}
+
 // The rod's finite_strain step with the slot kernel (gather = false) or the
 // gather kernel, from the same state.
 void plane_step(benchmark::State& state, long l0_um, bool gather, int threads) {
@@ -97,6 +107,12 @@ void register_space_benchmarks() {
     for (const int n : {16, 32, 64})
       benchmark::RegisterBenchmark(fmt::format("space/step/n:{}/threads:{}", n, threads).c_str(),
                                    [=](benchmark::State& st) { space_step(st, n, threads); })
+          ->UseManualTime()
+          ->MinTime(kPerCallMinTime);
+    for (const int n : {16, 32, 64})
+      benchmark::RegisterBenchmark(
+          fmt::format("space/step/paper/n:{}/threads:{}", n, threads).c_str(),
+          [=](benchmark::State& st) { space_paper_step(st, n, threads); })
           ->UseManualTime()
           ->MinTime(kPerCallMinTime);
     for (const long l0 : {1000L, 500L})

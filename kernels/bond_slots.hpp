@@ -148,10 +148,11 @@ void for_each_owned_slot(const BondSlots& s, Range owners, std::size_t fixed_end
 
 // The pieces of `block` by path: regular(begin, end, pattern) for the parts
 // of pattern runs, irregular(begin, end) for the rest, in index order.
-template <class Regular, class Irregular>
-void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&& irregular) {
+// Patterns: BondSlots, or anything with its `runs` and `patterns`.
+template <class Patterns, class Regular, class Irregular>
+void for_each_run(const Patterns& s, Range block, Regular&& regular, Irregular&& irregular) {
   auto run = std::upper_bound(s.runs.begin(), s.runs.end(), block.begin,
-                              [](std::size_t i, const BondSlots::Run& r) { return i < r.end; });
+                              [](std::size_t i, const auto& r) { return i < r.end; });
   for (; run != s.runs.end() && run->begin < block.end; ++run) {
     const std::size_t b = std::max(run->begin, block.begin), e = std::min(run->end, block.end);
     if (run->pattern < 0)
@@ -169,11 +170,11 @@ void for_each_run(const BondSlots& s, Range block, Regular&& regular, Irregular&
 // before it; its lanes from `first` on are new (first is 0 otherwise). A
 // kernel that only overwrites its particles' outputs may ignore `first`: a
 // particle done twice gets the same bits twice. Each other particle: row(i).
-template <class Group, class Row>
-void gather_lanes(const BondSlots& s, Range block, Group&& lanes, Row&& row) {
+template <class Patterns, class Group, class Row>
+void gather_lanes(const Patterns& s, Range block, Group&& lanes, Row&& row) {
   for_each_run(
       s, block,
-      [&](std::size_t begin, std::size_t end, const BondSlots::Pattern& pattern) {
+      [&](std::size_t begin, std::size_t end, const auto& pattern) {
         if (end - begin < kLanes) {
           for (std::size_t i = begin; i < end; ++i) row(i);
           return;

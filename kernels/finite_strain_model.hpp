@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "kernels/corrected_gradient_model.hpp"
+#include "kernels/small_matrix.hpp"
 
 namespace mpsolid {
 
@@ -48,17 +49,24 @@ struct NeoHookeanLaw {
     return mu * (shear + excess) + 0.5 * lambda * log_j * log_j;
   }
 
-  // The same law on a Dim x Dim matrix (kernels/gradient_gather_model.hpp),
+  // The same law on a row-major Dim x Dim array (kernels/gradient_gather_model.hpp),
   // with W = mu/2 (F:F - Dim) - mu ln J + lambda/2 (ln J)^2.
-  template <int Dim>
-  static Eigen::Matrix<double, Dim, Dim> piola(const Eigen::Matrix<double, Dim, Dim>& f, double jac,
-                                               double lambda, double mu, double& strain,
-                                               double& pressure) {
-    const double log_j = std::log(jac);
-    const Eigen::Matrix<double, Dim, Dim> fit = f.inverse().transpose();
-    strain = log_j;
-    pressure = -lambda * log_j / jac;
-    return mu * (f - fit) + lambda * log_j * fit;
+  template <int Dim, class T>
+  static void piola(const T* f, T jac, T lambda, T mu, T* out, T& strain, T& pressure) {
+    if constexpr (Dim == 2) {
+      piola(f, jac, lambda, mu, out, strain, pressure);
+    } else {
+      const T log_j = lane_log(jac);
+      SmallMatrix<3, T> m;
+      for (int k = 0; k < 9; ++k) m[k] = f[k];
+      const SmallMatrix<3, T> cof = cofactors<3>(m);  // J F^-T
+      for (int k = 0; k < 9; ++k) {
+        const T fit = cof[k] / jac;
+        out[k] = mu * (f[k] - fit) + lambda * log_j * fit;
+      }
+      strain = log_j;
+      pressure = -lambda * log_j / jac;
+    }
   }
 
   // W in H = F - I, as above: J - 1 = tr H + I2(H) + det H (I2 the sum of

@@ -72,6 +72,15 @@ inline Lanes lane_sqrt(Lanes v) {
   return v;
 }
 
+// -1 where a value is negative, else +1 (a value or each lane).
+inline double lane_sign(double x) {
+  return x < 0.0 ? -1.0 : 1.0;
+}
+inline Lanes lane_sign(Lanes v) {
+  const Lanes one = Lanes{} + 1.0;
+  return v < 0.0 ? -one : one;
+}
+
 // std::log of a value, or of each lane (glibc's: the scalar bits).
 inline double lane_log(double x) {
   return std::log(x);

@@ -42,18 +42,22 @@ struct HookeLaw {
     return 0.5 * lambda * trace * trace + mu * (exx * exx + eyy * eyy + 2.0 * exy * exy);
   }
 
-  // The same law on a Dim x Dim matrix (kernels/gradient_gather_model.hpp);
+  // The same law on a row-major Dim x Dim array (kernels/gradient_gather_model.hpp);
   // the pressure is minus the mean normal stress, -(lambda + 2 mu / Dim) tr eps.
-  template <int Dim>
-  static Eigen::Matrix<double, Dim, Dim> piola(const Eigen::Matrix<double, Dim, Dim>& f, double,
-                                               double lambda, double mu, double& strain,
-                                               double& pressure) {
-    using M = Eigen::Matrix<double, Dim, Dim>;
-    const M eps = 0.5 * (f + f.transpose()) - M::Identity();
-    const double trace = eps.trace();
-    strain = trace;
-    pressure = -(lambda + 2.0 * mu / Dim) * trace;
-    return lambda * trace * M::Identity() + 2.0 * mu * eps;
+  template <int Dim, class T>
+  static void piola(const T* f, T jac, T lambda, T mu, T* out, T& strain, T& pressure) {
+    if constexpr (Dim == 2) {
+      piola(f, jac, lambda, mu, out, strain, pressure);
+    } else {
+      const T trace = (f[0] - 1.0) + (f[4] - 1.0) + (f[8] - 1.0);  // tr eps
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const T eps = r == c ? f[4 * r] - 1.0 : 0.5 * (f[3 * r + c] + f[3 * c + r]);
+          out[3 * r + c] = r == c ? lambda * trace + 2.0 * mu * eps : 2.0 * mu * eps;
+        }
+      strain = trace;
+      pressure = -(lambda + 2.0 * mu / 3.0) * trace;
+    }
   }
   template <int Dim>
   static double energy_density(const Eigen::Matrix<double, Dim, Dim>& f, double lambda, double mu) {
