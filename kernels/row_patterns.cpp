@@ -62,7 +62,7 @@ RowPatterns find_row_patterns(const BondTable& bonds,
   }
 
   // Each particle's own pattern where it lies in a run of at least kLanes
-  // of them; then the others join the run before them, or else after them.
+  // of them.
   std::vector<std::int32_t> assigned(n, -1);
   s.present.assign(n, 0);
   for (std::size_t i = 0; i < n;) {
@@ -125,6 +125,7 @@ RowPatterns find_row_patterns(const BondTable& bonds,
     }
     i = end;
   }
+  // The others left join the run before them, or else after them.
   const auto join = [&](std::size_t i, std::size_t from) {
     if (assigned[i] >= 0 || assigned[from] < 0 || !usable[i]) return;
     if (fit(rows[i], s.patterns[static_cast<std::size_t>(assigned[from])], i, n, s.present[i]))

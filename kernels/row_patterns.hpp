@@ -8,9 +8,9 @@
 // kernels/gradient_gather_model.hpp) take kLanes particles at a time almost
 // everywhere: each entry's partners are kLanes consecutive particles
 // (unit-stride loads) and its shell constants one value. A masked entry is
-// computed with whatever particle its offset lands on and then discarded, so
-// a particle's sum runs over its own row in order: the bits of the row by
-// row gather. Nothing per bond is stored.
+// computed with whatever particle its offset lands on and its terms are then
+// selected away, so a particle's sum runs over its own row in order: the
+// bits of the row by row gather. Nothing per bond is stored.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -40,10 +40,12 @@ struct RowPatterns {
 };
 
 // The patterns of a bond table, `shell_of_entry` naming each entry's shell
-// (`off_shell`: none; such a row is taken row by row). The patterns are the
-// rows at least kLanes particles share; a particle whose row is no pattern
-// joins the run before or after it if its row fits that run's pattern and
-// every offset of the pattern lands inside the table.
+// (`off_shell`: none; such a row is on no run). The patterns are the rows
+// that runs of at least kLanes particles share, then the unions of the rows
+// of windows of at least kLanes consecutive particles (at most a row and a
+// half wide); a particle left over joins the run before or after it if its
+// row fits that run's pattern. Every offset of a run's pattern lands inside
+// the table.
 RowPatterns find_row_patterns(const BondTable& bonds,
                               const std::vector<std::uint8_t>& shell_of_entry,
                               std::uint8_t off_shell);
