@@ -131,27 +131,27 @@ class GradientGatherModel {
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
     halo.finish();
-    gather(p, bonds, range,
-           [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep, FreshLanes) {
-             gather_deformation_gradient<decltype(tag)>(p, i, count, entry, keep);
-           });
+    gather_range(
+        rows_, bonds, shells_.of_entry, range,
+        [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep, FreshLanes) {
+          gather_deformation_gradient<decltype(tag)>(p, i, count, entry, keep);
+        });
     halo.post("deformation gradient", {matrix_field(def_grad_)});
     halo.finish();
     if (consistent_hourglass_)
-      gather(p, bonds, range,
-             [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
-                 FreshLanes fresh) {
-               gather_hourglass_stress<decltype(tag)>(p, i, count, entry, keep, fresh);
-             });
+      gather_range(rows_, bonds, shells_.of_entry, range,
+                   [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
+                       FreshLanes fresh) {
+                     gather_hourglass_stress<decltype(tag)>(p, i, count, entry, keep, fresh);
+                   });
     halo.post("stress", {matrix_field(stress_a_)});  // the step finishes it
   }
 
   // Pass 2: the force of each moving particle in `range`; no torque.
   void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
-    gather(p, bonds, range,
-           [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep, FreshLanes) {
-             gather_force<decltype(tag)>(p, i, count, entry, keep);
-           });
+    gather_range(rows_, bonds, shells_.of_entry, range,
+                 [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
+                     FreshLanes) { gather_force<decltype(tag)>(p, i, count, entry, keep); });
   }
 
   // Each particle row by row, as where no pattern fits (the tests' check
@@ -273,14 +273,6 @@ class GradientGatherModel {
       g[r] = (b.x[r] - a.x[r]) - 0.5 * turned;
     }
     return g;
-  }
-
-  // Runs a pass (kernels/row_patterns.hpp, gather_rows) over `range`.
-  template <class Pass>
-  void gather(const ParticleStore&, const BondTable& bonds, Range range, Pass&& pass) const {
-    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      gather_rows(rows_, bonds, shells_.of_entry, {b, e}, pass);
-    });
   }
 
   // Pass 1 for particle i or kLanes from i. A masked entry's terms are

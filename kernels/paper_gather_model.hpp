@@ -134,20 +134,16 @@ class PaperGatherModel {
   template <class Halo>
   void strain_pass(ParticleStore& p, const BondTable& bonds, Range range, Halo& halo) {
     halo.finish();
-    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      gather_rows(rows_, bonds, shells_.of_entry, {b, e},
-                  [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
-                      FreshLanes) { gather_strain<decltype(tag)>(p, i, count, entry, keep); });
-    });
+    gather_range(rows_, bonds, shells_.of_entry, range,
+                 [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
+                     FreshLanes) { gather_strain<decltype(tag)>(p, i, count, entry, keep); });
     halo.post("pressure", {field_of(p.pressure)});  // the step finishes it
   }
 
   void compute_forces(ParticleStore& p, const BondTable& bonds, Range range) const {
-    parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
-      gather_rows(rows_, bonds, shells_.of_entry, {b, e},
-                  [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
-                      FreshLanes) { gather_force<decltype(tag)>(p, i, count, entry, keep); });
-    });
+    gather_range(rows_, bonds, shells_.of_entry, range,
+                 [&](auto tag, std::size_t i, std::size_t count, auto&& entry, auto&& keep,
+                     FreshLanes) { gather_force<decltype(tag)>(p, i, count, entry, keep); });
   }
 
   // Each particle row by row, as where no pattern fits (the tests' check

@@ -10,6 +10,40 @@ namespace mpsolid {
 namespace {
 using Row = std::vector<std::pair<std::ptrdiff_t, std::uint8_t>>;
 
+// Particle i's row as (offset, shell) pairs, read from the table when asked
+// (the rows of millions of particles are not kept).
+class TableRows {
+ public:
+  TableRows(const BondTable& bonds, const std::vector<std::uint8_t>& shells)
+      : bonds_(bonds), shells_(shells) {}
+  const Row& of(std::size_t i) {
+    fill(i, row_);
+    return row_;
+  }
+  void fill(std::size_t i, Row& out) const {
+    out.clear();
+    for (std::uint32_t b = bonds_.begin(i); b < bonds_.end(i); ++b)
+      out.emplace_back(
+          static_cast<std::ptrdiff_t>(bonds_.neighbor[b]) - static_cast<std::ptrdiff_t>(i),
+          shells_[b]);
+  }
+  bool same(std::size_t i, std::size_t j) const {
+    const std::uint32_t length = bonds_.end(i) - bonds_.begin(i);
+    if (bonds_.end(j) - bonds_.begin(j) != length) return false;
+    for (std::uint32_t k = 0; k < length; ++k) {
+      const std::uint32_t a = bonds_.begin(i) + k, b = bonds_.begin(j) + k;
+      if (bonds_.neighbor[a] - i != bonds_.neighbor[b] - j || shells_[a] != shells_[b])
+        return false;
+    }
+    return true;
+  }
+
+ private:
+  const BondTable& bonds_;
+  const std::vector<std::uint8_t>& shells_;
+  Row row_;
+};
+
 // The mask of `row` within `pattern`, if the row fits it (every entry in it,
 // in order) and every offset of the pattern from i lands in [0, n).
 bool fit(const Row& row, const RowPattern& pattern, std::size_t i, std::size_t n,
@@ -35,18 +69,17 @@ RowPatterns find_row_patterns(const BondTable& bonds,
                               const std::vector<std::uint8_t>& shell_of_entry,
                               std::uint8_t off_shell) {
   const std::size_t n = bonds.particle_count();
-  std::vector<Row> rows(n);
+  TableRows rows(bonds, shell_of_entry);
   std::vector<bool> usable(n, true);
   std::map<Row, std::size_t> row_count;
+  std::size_t longest = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
+    const std::size_t length = bonds.end(i) - bonds.begin(i);
+    longest = std::max(longest, length);
+    usable[i] = length > 0 && length <= RowPatterns::kMaxEntries;
+    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
       usable[i] = usable[i] && shell_of_entry[b] != off_shell;
-      rows[i].emplace_back(
-          static_cast<std::ptrdiff_t>(bonds.neighbor[b]) - static_cast<std::ptrdiff_t>(i),
-          shell_of_entry[b]);
-    }
-    usable[i] = usable[i] && !rows[i].empty() && rows[i].size() <= RowPatterns::kMaxEntries;
-    if (usable[i]) ++row_count[rows[i]];
+    if (usable[i]) ++row_count[rows.of(i)];
   }
   RowPatterns s;
   std::map<Row, std::int32_t> pattern_of;
@@ -66,14 +99,14 @@ RowPatterns find_row_patterns(const BondTable& bonds,
   std::vector<std::int32_t> assigned(n, -1);
   s.present.assign(n, 0);
   for (std::size_t i = 0; i < n;) {
-    const auto own = usable[i] ? pattern_of.find(rows[i]) : pattern_of.end();
+    const auto own = usable[i] ? pattern_of.find(rows.of(i)) : pattern_of.end();
     std::size_t end = i + 1;
     if (own != pattern_of.end()) {
-      while (end < n && usable[end] && rows[end] == rows[i]) ++end;
+      while (end < n && usable[end] && rows.same(end, i)) ++end;
       if (end - i >= kLanes)
         for (std::size_t k = i; k < end; ++k) {
           assigned[k] = own->second;
-          fit(rows[k], s.patterns[static_cast<std::size_t>(own->second)], k, n, s.present[k]);
+          fit(rows.of(k), s.patterns[static_cast<std::size_t>(own->second)], k, n, s.present[k]);
         }
     }
     i = end;
@@ -81,20 +114,18 @@ RowPatterns find_row_patterns(const BondTable& bonds,
   // The rest in windows of consecutive particles whose rows' union is a
   // pattern they all fit (a thin plate's lines, the ends of a body's
   // lines), as long as the union stays within a row and a half.
-  std::size_t longest = 0;
-  for (const Row& row : rows) longest = std::max(longest, row.size());
   const std::size_t widest = std::min(RowPatterns::kMaxEntries, longest + longest / 2);
   for (std::size_t i = 0; i < n;) {
     if (assigned[i] >= 0 || !usable[i]) {
       ++i;
       continue;
     }
-    Row all = rows[i];
+    Row all = rows.of(i), wider;
     std::size_t end = i + 1;
     for (; end < n && assigned[end] < 0 && usable[end]; ++end) {
-      Row wider;
-      std::set_union(all.begin(), all.end(), rows[end].begin(), rows[end].end(),
-                     std::back_inserter(wider));
+      const Row& next = rows.of(end);
+      wider.clear();
+      std::set_union(all.begin(), all.end(), next.begin(), next.end(), std::back_inserter(wider));
       bool fits = wider.size() <= widest;
       for (std::size_t k = 1; fits && k < wider.size(); ++k)
         fits = wider[k].first != wider[k - 1].first;  // one shell per offset
@@ -104,7 +135,7 @@ RowPatterns find_row_patterns(const BondTable& bonds,
                a + wider.back().first < static_cast<std::ptrdiff_t>(n);
       };
       if (!fits || !reaches(i) || !reaches(end)) break;
-      all = std::move(wider);
+      std::swap(all, wider);
     }
     if (end - i < kLanes) {
       ++i;
@@ -121,14 +152,14 @@ RowPatterns find_row_patterns(const BondTable& bonds,
     }
     for (std::size_t k = i; k < end; ++k) {
       assigned[k] = at->second;
-      fit(rows[k], s.patterns[static_cast<std::size_t>(at->second)], k, n, s.present[k]);
+      fit(rows.of(k), s.patterns[static_cast<std::size_t>(at->second)], k, n, s.present[k]);
     }
     i = end;
   }
   // The others left join the run before them, or else after them.
   const auto join = [&](std::size_t i, std::size_t from) {
     if (assigned[i] >= 0 || assigned[from] < 0 || !usable[i]) return;
-    if (fit(rows[i], s.patterns[static_cast<std::size_t>(assigned[from])], i, n, s.present[i]))
+    if (fit(rows.of(i), s.patterns[static_cast<std::size_t>(assigned[from])], i, n, s.present[i]))
       assigned[i] = assigned[from];
   };
   for (std::size_t i = 1; i < n; ++i) join(i, i - 1);

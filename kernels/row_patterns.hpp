@@ -23,6 +23,7 @@
 #include "kernels/bond_slots.hpp"
 #include "kernels/lanes.hpp"
 #include "src/core/bonds.hpp"
+#include "src/core/parallel.hpp"
 
 namespace mpsolid {
 
@@ -209,6 +210,15 @@ void gather_rows(const RowPatterns& rows, const BondTable& bonds,
         });
       },
       [&](std::size_t begin, std::size_t end) { in_groups(begin, end, own_rows); });
+}
+
+// gather_rows over `range`, in the team's blocks (src/core/parallel.hpp).
+template <class Pass>
+void gather_range(const RowPatterns& rows, const BondTable& bonds,
+                  const std::vector<std::uint8_t>& shell_of_entry, Range range, Pass&& pass) {
+  parallel_blocks(range.begin, range.end, [&](std::size_t b, std::size_t e) {
+    gather_rows(rows, bonds, shell_of_entry, {b, e}, pass);
+  });
 }
 
 }  // namespace mpsolid
