@@ -76,6 +76,49 @@ def _distance_to_segment(points, a, b):
     return np.hypot(*(points - (a + t[:, None] * d)).T)
 
 
+BOX_FACES = ("bottom", "right", "top", "left", "back", "front")
+# A box's face: its axis (0 x, 1 y, 2 z) and whether it is the high side.
+_BOX_FACE_PLANES = ((1, 0), (0, 1), (1, 1), (0, 0), (2, 0), (2, 1))
+
+
+def _section_face_distance(position, section, face):
+    """Distance in x-y to a plane section's named face (a rectangle's name
+    or a polygon's edge number), as the plane's faces are chosen."""
+    if section.get("shape", "rectangle") == "rectangle":
+        k = RECTANGLE_FACES.index(face)
+        c = _rectangle_corners(section)
+        a, b = c[k], c[(k + 1) % 4]
+    else:
+        v = np.asarray(section["vertices"], float)
+        k = int(face) - 1
+        a, b = v[k], v[(k + 1) % len(v)]
+    return _distance_to_segment(position[:, :2], a, b)
+
+
+def _face_distance_in_space(position, body, face):
+    """Distance to a 3D body's named face (the names of docs/running.md, "In
+    space"), or None for a face this drawing does not know."""
+    kind = body.get("shape", "box")
+    if kind == "box":
+        axis, high = _BOX_FACE_PLANES[BOX_FACES.index(face)]
+        return np.abs(position[:, axis] - body["xyz"[axis]][high])
+    if kind == "cylinder":
+        base, top = np.asarray(body["base"], float), np.asarray(body["top"], float)
+        u = (top - base) / np.linalg.norm(top - base)
+        along = (position - base) @ u
+        if face == "base":
+            return np.abs(along)
+        if face == "top":
+            return np.abs(along - np.linalg.norm(top - base))
+        radial = position - base - along[:, None] * u
+        return np.abs(np.linalg.norm(radial, axis=1) - body["radius"])
+    if kind == "extrusion":
+        if face in ("back", "front"):
+            return np.abs(position[:, 2] - body["z"][0 if face == "back" else 1])
+        return _section_face_distance(position, body["section"], face)
+    return None
+
+
 def loaded_particles(case, body_names, frame, l0):
     """{load name: indices into the frame's particles} of each pressure load:
     the surface particles (the frame's `surface` flag) of its body that lie
@@ -92,7 +135,11 @@ def loaded_particles(case, body_names, frame, l0):
             continue
         body = case["bodies"][load["body"]]
         chosen = surface & (frame["body"] == body_names.index(load["body"]))
-        if "face" in load:
+        if "face" in load and case.get("dimension", 2) == 3:
+            distance = _face_distance_in_space(position, body, str(load["face"]))
+            if distance is not None:
+                chosen &= distance <= 0.75 * l0
+        elif "face" in load:
             if body.get("shape", "rectangle") == "rectangle":
                 k = RECTANGLE_FACES.index(load["face"])
                 c = _rectangle_corners(body)
@@ -103,13 +150,15 @@ def loaded_particles(case, body_names, frame, l0):
                 a, b = v[k], v[(k + 1) % len(v)]
             chosen &= _distance_to_segment(position, a, b) <= 0.75 * l0
         elif "box" in load:
-            (x0, x1), (y0, y1) = load["box"]["x"], load["box"]["y"]
-            x, y = position[:, 0], position[:, 1]
-            chosen &= (x >= x0 - l0) & (x <= x1 + l0) & (y >= y0 - l0) & (y <= y1 + l0)
-        elif "half_plane" in load:
-            p = np.asarray(load["half_plane"]["point"], float)
-            n = np.asarray(load["half_plane"]["normal"], float)
-            chosen &= (position - p) @ n >= -0.75 * l0 * np.hypot(*n)
+            for axis, key in enumerate("xyz"[:position.shape[1]]):
+                if key in load["box"]:
+                    lo, hi = load["box"][key]
+                    chosen &= (position[:, axis] >= lo - l0) & (position[:, axis] <= hi + l0)
+        elif "half_plane" in load or "half_space" in load:
+            side = load.get("half_plane", load.get("half_space"))
+            p = np.asarray(side["point"], float)
+            n = np.asarray(side["normal"], float)
+            chosen &= (position - p) @ n >= -0.75 * l0 * np.linalg.norm(n)
         # In order round the body's centroid, so an even pick spreads along it.
         indices = np.flatnonzero(chosen)
         centre = position[frame["body"] == body_names.index(load["body"])].mean(axis=0)
@@ -120,7 +169,7 @@ def loaded_particles(case, body_names, frame, l0):
             # corner: the face's own direction is its particles' usual one.
             normal = frame["normal"][indices]
             mean = normal.mean(axis=0)
-            indices = indices[normal @ (mean / max(np.hypot(*mean), 1e-30)) > 0.9]
+            indices = indices[normal @ (mean / max(np.linalg.norm(mean), 1e-30)) > 0.9]
         out[name] = indices
     return out
 

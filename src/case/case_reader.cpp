@@ -46,11 +46,6 @@ Hold parse_hold(TableReader& r, const std::string& key, const std::string& text,
                           dimension == 3 ? ", z" : ""));
 }
 
-// A case in space refuses what it cannot run yet, naming the key.
-void refuse_in_space(TableReader& r, const std::string& key, const std::string& what) {
-  r.fail(key, fmt::format("{} is not available in space (dimension = 3) yet", what));
-}
-
 // "[x, y]" or "[x, y, z]": the case's axes, for messages.
 std::string axes_text(int dimension, const char* prefix = "") {
   return dimension == 3 ? fmt::format("[{0}x, {0}y, {0}z]", prefix)
@@ -294,10 +289,9 @@ void read_loads(TableReader& top, CaseSpec& c) {
                                      : "the total force [Fx, Fy] in N (over the depth)",
                     l.force, c.dimension);
         } else if (l.type == LoadSpec::Type::pressure) {
-          if (c.dimension == 3) refuse_in_space(r, "type", "a pressure load");
           l.pressure = r.number("pressure", "the pressure in Pa (positive pushes inwards)");
           r.range_check("pressure", l.pressure, std::isfinite(l.pressure), "a finite number of Pa");
-          l.surface = read_selection(r, body, c.l0);
+          l.surface = read_selection(r, body, c.l0, c.dimension);
         } else {
           r.numbers(
               "acceleration",

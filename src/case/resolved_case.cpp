@@ -7,6 +7,7 @@
 #include <toml.hpp>
 
 #include "src/case/case_overrides.hpp"
+#include "src/core/region3_boundary.hpp"
 #include "src/core/region_boundary.hpp"
 
 namespace mpsolid {
@@ -211,20 +212,31 @@ const char* load_type(LoadSpec::Type type) {
                                                 : "pressure";
 }
 
-std::string selection_toml(const SurfaceSelection& s, const BodySpec& body) {
+std::string selection_toml(const SurfaceSelection& s, const BodySpec& body, int dimension) {
   switch (s.kind) {
     case SurfaceSelection::Kind::all:
       return "";
     case SurfaceSelection::Kind::face:
+      if (dimension == 3)
+        return fmt::format(
+            "face = {}\n",
+            quote(region3_face_names(body.shape3.region)[static_cast<std::size_t>(s.face)]));
       if (std::holds_alternative<RectangleRegion>(body.shape.region))
         return fmt::format("face = \"{}\"\n", kRectangleFaces[s.face]);
       return fmt::format("face = {}\n", s.face + 1);
     case SurfaceSelection::Kind::box:
+      if (dimension == 3)
+        return fmt::format("box = {{ x = {}, y = {}, z = {} }}\n", pair(s.box.lo.x, s.box.hi.x),
+                           pair(s.box.lo.y, s.box.hi.y), pair(s.box.lo.z, s.box.hi.z));
       return fmt::format("box = {{ x = {}, y = {} }}\n", pair(s.box.lo.x, s.box.hi.x),
                          pair(s.box.lo.y, s.box.hi.y));
-    case SurfaceSelection::Kind::half_plane:
-      return fmt::format("half_plane = {{ point = {}, normal = {} }}\n", pair(s.point.x, s.point.y),
-                         pair(s.normal.x, s.normal.y));
+    case SurfaceSelection::Kind::half_plane: {
+      const double point[3] = {s.point.x, s.point.y, s.point.z};
+      const double normal[3] = {s.normal.x, s.normal.y, s.normal.z};
+      return fmt::format("{} = {{ point = {}, normal = {} }}\n",
+                         dimension == 3 ? "half_space" : "half_plane", numbers(point, dimension),
+                         numbers(normal, dimension));
+    }
   }
   return "";
 }
@@ -277,7 +289,7 @@ std::string resolved_case_toml(const CaseSpec& c) {
       out += fmt::format("acceleration = {}\n", numbers(l.acceleration, c.dimension));
     else
       out += fmt::format("pressure = {}\n", format_number(l.pressure)) +
-             selection_toml(l.surface, body);
+             selection_toml(l.surface, body, c.dimension);
     out += fmt::format("start = {}\n", format_number(l.start));
     out += history_toml(l.history);
   }

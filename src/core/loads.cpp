@@ -34,17 +34,16 @@ double force_work(const StepLoad& load, double dx, double dy, double dz) {
 }
 }  // namespace
 
-PressureSurface make_pressure_surface(const Surface& surface,
-                                      const std::vector<std::uint32_t>& segments, std::size_t first,
-                                      double pressure, double depth) {
-  PressureSurface ps;
-  ps.pressure = pressure;
-  ps.depth = depth;
-  // The nodes the segments need, numbered in surface order.
+namespace {
+// The nodes of `surface` that `used` marks, numbered in surface order, with
+// their weights over storage indices `first` + site, into `ps`; returns each
+// surface node's number there (-1 where unused).
+template <class AnySurface>
+std::vector<std::int64_t> take_nodes(const AnySurface& surface, const std::vector<bool>& used,
+                                     std::size_t first, PressureSurface& ps) {
   std::vector<std::int64_t> node_of(surface.nodes(), -1);
-  for (const std::uint32_t k : segments) node_of[k] = node_of[surface.next[k]] = 0;
   for (std::size_t k = 0; k < surface.nodes(); ++k) {
-    if (node_of[k] < 0) continue;
+    if (!used[k]) continue;
     node_of[k] = static_cast<std::int64_t>(ps.nodes());
     for (std::uint32_t w = surface.offsets[k]; w < surface.offsets[k + 1]; ++w) {
       ps.particle.push_back(static_cast<std::uint32_t>(first + surface.site[w]));
@@ -52,10 +51,12 @@ PressureSurface make_pressure_surface(const Surface& surface,
     }
     ps.offsets.push_back(static_cast<std::uint32_t>(ps.particle.size()));
   }
-  for (const std::uint32_t k : segments) {
-    ps.from.push_back(static_cast<std::uint32_t>(node_of[k]));
-    ps.to.push_back(static_cast<std::uint32_t>(node_of[surface.next[k]]));
-  }
+  return node_of;
+}
+
+// The particles the nodes reach, each weight's place among them, every node
+// hosted, and the running step's arrays.
+void finish_pressure_surface(PressureSurface& ps) {
   ps.targets = ps.particle;
   std::sort(ps.targets.begin(), ps.targets.end());
   ps.targets.erase(std::unique(ps.targets.begin(), ps.targets.end()), ps.targets.end());
@@ -66,6 +67,44 @@ PressureSurface make_pressure_surface(const Surface& surface,
   for (auto* v : {&ps.x, &ps.y, &ps.fx, &ps.fy}) v->assign(ps.nodes(), 0.0);
   ps.target_fx.assign(ps.targets.size(), 0.0);
   ps.target_fy.assign(ps.targets.size(), 0.0);
+  if (!ps.in_space()) return;
+  ps.z.assign(ps.nodes(), 0.0);
+  ps.fz.assign(ps.nodes(), 0.0);
+  ps.target_fz.assign(ps.targets.size(), 0.0);
+}
+}  // namespace
+
+PressureSurface make_pressure_surface(const Surface& surface,
+                                      const std::vector<std::uint32_t>& segments, std::size_t first,
+                                      double pressure, double depth) {
+  PressureSurface ps;
+  ps.pressure = pressure;
+  ps.depth = depth;
+  std::vector<bool> used(surface.nodes(), false);
+  for (const std::uint32_t k : segments) used[k] = used[surface.next[k]] = true;
+  const std::vector<std::int64_t> node_of = take_nodes(surface, used, first, ps);
+  for (const std::uint32_t k : segments) {
+    ps.from.push_back(static_cast<std::uint32_t>(node_of[k]));
+    ps.to.push_back(static_cast<std::uint32_t>(node_of[surface.next[k]]));
+  }
+  finish_pressure_surface(ps);
+  return ps;
+}
+
+PressureSurface make_pressure_surface3(const Surface3& surface,
+                                       const std::vector<std::uint32_t>& quads, std::size_t first,
+                                       double pressure) {
+  PressureSurface ps;
+  ps.pressure = pressure;
+  ps.depth = 1.0;
+  std::vector<bool> used(surface.nodes(), false);
+  for (const std::uint32_t q : quads)
+    for (int c = 0; c < 4; ++c) used[surface.corner[4 * q + c]] = true;
+  const std::vector<std::int64_t> node_of = take_nodes(surface, used, first, ps);
+  for (const std::uint32_t q : quads)
+    for (int c = 0; c < 4; ++c)
+      ps.quad.push_back(static_cast<std::uint32_t>(node_of[surface.corner[4 * q + c]]));
+  finish_pressure_surface(ps);
   return ps;
 }
 
@@ -95,37 +134,54 @@ PressureSurface local_pressure_surface(const PressureSurface& whole,
   }
   s.target_fx.assign(s.targets.size(), 0.0);
   s.target_fy.assign(s.targets.size(), 0.0);
+  if (s.in_space()) s.target_fz.assign(s.targets.size(), 0.0);
   return s;
 }
 
 namespace {
-// Node k's position in the current state.
-Point2 node_now(const ParticleStore& p, const PressureSurface& s, std::size_t k) {
-  return affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
+// Node k's position in the current state (z only in space).
+struct NodePosition {
+  double x = 0, y = 0, z = 0;
+};
+NodePosition node_now(const ParticleStore& p, const PressureSurface& s, std::size_t k) {
+  const Point2 plane = affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
+  NodePosition at{plane.x, plane.y, 0.0};
+  if (s.in_space())
+    for (std::uint32_t w = s.offsets[k]; w < s.offsets[k + 1]; ++w)
+      at.z += s.weight[w] * p.z[s.particle[w]];
+  return at;
+}
+
+// The work of node k's force in the running step as it moves to `now`.
+double node_work(const PressureSurface& s, std::size_t k, const NodePosition& now) {
+  const double plane = s.fx[k] * (now.x - s.x[k]) + s.fy[k] * (now.y - s.y[k]);
+  return s.in_space() ? plane + s.fz[k] * (now.z - s.z[k]) : plane;
 }
 
 // The work of the running step's node forces from its start to now (the
 // whole state: every node's particles at hand).
 double running_pressure_work(const ParticleStore& p, const PressureSurface& s) {
   double work = 0;
-  for (std::size_t k = 0; k < s.nodes(); ++k) {
-    const Point2 now = node_now(p, s, k);
-    work += s.fx[k] * (now.x - s.x[k]) + s.fy[k] * (now.y - s.y[k]);
-  }
+  for (std::size_t k = 0; k < s.nodes(); ++k) work += node_work(s, k, node_now(p, s, k));
   return work;
 }
 
+// Makes `at` node k's position at the start of the running step.
+void start_node(PressureSurface& s, std::size_t k, const NodePosition& at) {
+  s.x[k] = at.x;
+  s.y[k] = at.y;
+  if (s.in_space()) s.z[k] = at.z;
+}
+
 // A pressure load at the start of a step, once its nodes' start positions
-// (nx, ny) are known: the previous step's work (as running_pressure_work
-// sums it), the positions and this step's forces.
-void activate_pressure(StepLoad& load, const std::vector<double>& nx, const std::vector<double>& ny,
-                       double time) {
+// are known: the previous step's work (as running_pressure_work sums it),
+// the positions and this step's forces.
+void activate_pressure(StepLoad& load, const std::vector<NodePosition>& at, double time) {
   PressureSurface& s = load.surface;
   double work = 0;
   for (std::size_t k = 0; k < s.nodes(); ++k) {
-    work += s.fx[k] * (nx[k] - s.x[k]) + s.fy[k] * (ny[k] - s.y[k]);
-    s.x[k] = nx[k];
-    s.y[k] = ny[k];
+    work += node_work(s, k, at[k]);
+    start_node(s, k, at[k]);
   }
   if (load.active) load.work += work;
   load.active = true;
@@ -138,35 +194,36 @@ void activate_pressure(StepLoad& load, const std::vector<double>& nx, const std:
 // with every node.
 void activate_pressures(const ParticleStore& p, std::vector<StepLoad>& loads, std::int64_t step,
                         double dt, const GatherParts* gather) {
-  std::vector<std::vector<double>> nx(loads.size()), ny(loads.size());
-  std::vector<double> mine;  // (load, node, x, y) of the hosted nodes
+  std::vector<std::vector<NodePosition>> at(loads.size());
+  // (load, node, x, y[, z]) of the hosted nodes.
+  const std::size_t stride = p.dimension == 3 ? 5 : 4;
+  std::vector<double> mine;
   bool any = false;
   for (std::size_t l = 0; l < loads.size(); ++l) {
     const StepLoad& load = loads[l];
     if (!load.is_pressure() || step < load.first_step) continue;
     any = true;
-    nx[l].assign(load.surface.nodes(), 0.0);
-    ny[l].assign(load.surface.nodes(), 0.0);
+    at[l].assign(load.surface.nodes(), {});
     for (const std::uint32_t k : load.surface.hosted) {
-      const Point2 now = node_now(p, load.surface, k);
-      nx[l][k] = now.x;
-      ny[l][k] = now.y;
-      if (gather)
-        mine.insert(mine.end(), {static_cast<double>(l), static_cast<double>(k), now.x, now.y});
+      const NodePosition now = node_now(p, load.surface, k);
+      at[l][k] = now;
+      if (!gather) continue;
+      mine.insert(mine.end(), {static_cast<double>(l), static_cast<double>(k), now.x, now.y});
+      if (stride == 5) mine.push_back(now.z);
     }
   }
   if (!any) return;
   if (gather) {
     const std::vector<double> all = (*gather)(mine);
-    for (std::size_t at = 0; at + 4 <= all.size(); at += 4) {
-      const auto l = static_cast<std::size_t>(all[at]), k = static_cast<std::size_t>(all[at + 1]);
-      nx[l][k] = all[at + 2];
-      ny[l][k] = all[at + 3];
+    for (std::size_t from = 0; from + stride <= all.size(); from += stride) {
+      const auto l = static_cast<std::size_t>(all[from]);
+      const auto k = static_cast<std::size_t>(all[from + 1]);
+      at[l][k] = {all[from + 2], all[from + 3], stride == 5 ? all[from + 4] : 0.0};
     }
   }
   for (std::size_t l = 0; l < loads.size(); ++l)
-    if (!nx[l].empty())
-      activate_pressure(loads[l], nx[l], ny[l], static_cast<double>(step) * dt - loads[l].start);
+    if (!at[l].empty())
+      activate_pressure(loads[l], at[l], static_cast<double>(step) * dt - loads[l].start);
 }
 }  // namespace
 
@@ -174,6 +231,7 @@ void pressure_forces(StepLoad& load) {
   PressureSurface& s = load.surface;
   std::fill(s.fx.begin(), s.fx.end(), 0.0);
   std::fill(s.fy.begin(), s.fy.end(), 0.0);
+  std::fill(s.fz.begin(), s.fz.end(), 0.0);
   if (!s.given_fx.empty()) {
     s.fx = s.given_fx;
     s.fy = s.given_fy;
@@ -189,13 +247,19 @@ void pressure_forces(StepLoad& load) {
     s.fx[b] += fx;
     s.fy[b] += fy;
   }
+  // In space, -p times each node's share of its quadrilaterals' area vectors.
+  if (s.in_space() && s.given_fx.empty())
+    add_node_area_vectors(s.quad, {s.x.data(), s.y.data(), s.z.data()}, -load.factor * s.pressure,
+                          {s.fx.data(), s.fy.data(), s.fz.data()});
   std::fill(s.target_fx.begin(), s.target_fx.end(), 0.0);
   std::fill(s.target_fy.begin(), s.target_fy.end(), 0.0);
+  std::fill(s.target_fz.begin(), s.target_fz.end(), 0.0);
   for (std::size_t k = 0; k < s.nodes(); ++k)
     for (std::uint32_t w = s.offsets[k]; w < s.offsets[k + 1]; ++w) {
       if (s.slot[w] == PressureSurface::kElsewhere) continue;  // another part's particle
       s.target_fx[s.slot[w]] += s.weight[w] * s.fx[k];
       s.target_fy[s.slot[w]] += s.weight[w] * s.fy[k];
+      if (s.in_space()) s.target_fz[s.slot[w]] += s.weight[w] * s.fz[k];
     }
 }
 
@@ -203,11 +267,7 @@ void close_running_step(const ParticleStore& p, StepLoad& load) {
   if (!load.active) return;
   PressureSurface& s = load.surface;
   load.work += running_pressure_work(p, s);
-  for (std::size_t k = 0; k < s.nodes(); ++k) {
-    const Point2 now = node_now(p, s, k);
-    s.x[k] = now.x;
-    s.y[k] = now.y;
-  }
+  for (std::size_t k = 0; k < s.nodes(); ++k) start_node(s, k, node_now(p, s, k));
 }
 
 bool any_pressure(const std::vector<StepLoad>& loads) {
@@ -251,6 +311,7 @@ void apply_loads(ParticleStore& p, const std::vector<StepLoad>& loads, Range blo
         const std::size_t t = static_cast<std::size_t>(it - s.targets.begin());
         p.fx[*it] += s.target_fx[t];
         p.fy[*it] += s.target_fy[t];
+        if (s.in_space()) p.fz[*it] += s.target_fz[t];
       }
       continue;
     }

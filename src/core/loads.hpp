@@ -12,12 +12,13 @@
 #include "src/core/load_history.hpp"
 #include "src/core/particle_store.hpp"
 #include "src/core/surface.hpp"
+#include "src/core/surface3.hpp"
 
 namespace mpsolid {
 
-// A pressure's part of a body's surface: its selected segments, the nodes at
-// their ends (weights over storage indices), and the running step's node
-// positions and forces.
+// A pressure's part of a body's surface: its selected segments (in space,
+// quadrilaterals), the nodes at their ends (weights over storage indices),
+// and the running step's node positions and forces.
 //
 // A body may be split between ranks (or threads stepping their own parts):
 // every part holds every node and segment, but positions only the nodes
@@ -28,15 +29,17 @@ namespace mpsolid {
 struct PressureSurface {
   static constexpr std::uint32_t kElsewhere = std::numeric_limits<std::uint32_t>::max();
   double pressure = 0;  // Pa at a factor of 1
-  double depth = 0;     // m
+  double depth = 0;     // m (the plane's; 1 in space)
   // Node k's weights over [offsets[k], offsets[k + 1]); a particle this
   // part does not hold is kElsewhere (never read: its node is not `hosted`).
   std::vector<std::uint32_t> offsets{0}, particle;
   std::vector<double> weight;
   std::vector<std::uint32_t> hosted;    // the nodes this part positions, increasing
   std::vector<std::uint32_t> from, to;  // each segment's nodes
-  // The running step: each node's position at its start, and its force.
-  std::vector<double> x, y, fx, fy;
+  std::vector<std::uint32_t> quad;      // in space: four nodes per quadrilateral
+  // The running step: each node's position at its start, and its force
+  // (z and fz in space only).
+  std::vector<double> x, y, fx, fy, z, fz;
   // Node forces set from outside (N: the gas's, held over its step), used
   // instead of the pressure when not empty.
   std::vector<double> given_fx, given_fy;
@@ -44,8 +47,15 @@ struct PressureSurface {
   // weight's place among them (kElsewhere for another part's particle), and
   // their forces in the running step.
   std::vector<std::uint32_t> targets, slot;
-  std::vector<double> target_fx, target_fy;
+  std::vector<double> target_fx, target_fy, target_fz;
   std::size_t nodes() const { return offsets.size() - 1; }
+  bool in_space() const { return !quad.empty(); }
+  // What a checkpoint or a rank's slice keeps of the running step, in order.
+  std::vector<std::vector<double>*> running_fields() { return {&x, &y, &given_fx, &given_fy, &z}; }
+  std::vector<const std::vector<double>*> running_fields() const {
+    return {&x, &y, &given_fx, &given_fy, &z};
+  }
+  std::size_t running_size() const { return 2 * x.size() + 2 * given_fx.size() + z.size(); }
 };
 
 // The segments `segments` of `surface`, whose sites are storage indices
@@ -53,6 +63,10 @@ struct PressureSurface {
 PressureSurface make_pressure_surface(const Surface& surface,
                                       const std::vector<std::uint32_t>& segments, std::size_t first,
                                       double pressure, double depth);
+// In space: the quadrilaterals `quads` of `surface`.
+PressureSurface make_pressure_surface3(const Surface3& surface,
+                                       const std::vector<std::uint32_t>& quads, std::size_t first,
+                                       double pressure);
 // The surface as a part sees it: `local_of(i)` is the part's index of
 // storage index i, or kElsewhere where it does not hold i; `owned(local)`
 // whether the part steps that particle.
@@ -81,7 +95,7 @@ struct StepLoad {
   // A pressure load's surface; empty for a force. A body's gas load is a
   // pressure load over its whole surface with given node forces.
   PressureSurface surface;
-  bool is_pressure() const { return !surface.from.empty(); }
+  bool is_pressure() const { return !surface.from.empty() || surface.in_space(); }
 };
 
 // A pressure load's node forces and their particles' sums, from its nodes'

@@ -200,35 +200,39 @@ Surface build_surface(const Shape& shape, const std::vector<Point2>& sites, doub
   return s;
 }
 
+bool selection_takes(const SurfaceSelection& selection, int face, Point3 mid, double slack) {
+  switch (selection.kind) {
+    case SurfaceSelection::Kind::all:
+      return true;
+    case SurfaceSelection::Kind::face:
+      return face == selection.face;
+    case SurfaceSelection::Kind::box: {
+      const Box3& b = selection.box;
+      return mid.x >= b.lo.x - slack && mid.x <= b.hi.x + slack && mid.y >= b.lo.y - slack &&
+             mid.y <= b.hi.y + slack && mid.z >= b.lo.z - slack && mid.z <= b.hi.z + slack;
+    }
+    case SurfaceSelection::Kind::half_plane: {
+      const Point3 n = selection.normal, p = selection.point;
+      const double length = n.z == 0 ? std::hypot(n.x, n.y) : std::hypot(n.x, n.y, n.z);
+      const double plane = (mid.x - p.x) * n.x + (mid.y - p.y) * n.y;
+      return (n.z == 0 ? plane : plane + (mid.z - p.z) * n.z) >= -slack * length;
+    }
+  }
+  return false;
+}
+
 std::vector<std::uint32_t> select_segments(const Surface& surface,
                                            const SurfaceSelection& selection) {
   std::vector<std::uint32_t> chosen;
   for (std::size_t k = 0; k < surface.nodes(); ++k) {
     const Point2 a = surface.node_ref[k], b = surface.node_ref[surface.next[k]];
-    const Point2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
     // A midpoint on the selection's edge counts, give or take round-off in
     // the nodes (a circle's nodes come from sines and cosines), so a
     // symmetric selection of a symmetric body stays symmetric.
     const double slack = 1e-9 * std::hypot(b.x - a.x, b.y - a.y);
-    bool in = true;
-    switch (selection.kind) {
-      case SurfaceSelection::Kind::all:
-        break;
-      case SurfaceSelection::Kind::face:
-        in = surface.face[k] == selection.face;
-        break;
-      case SurfaceSelection::Kind::box:
-        in = mid.x >= selection.box.lo.x - slack && mid.x <= selection.box.hi.x + slack &&
-             mid.y >= selection.box.lo.y - slack && mid.y <= selection.box.hi.y + slack;
-        break;
-      case SurfaceSelection::Kind::half_plane: {
-        const Point2 n = selection.normal;
-        in = (mid.x - selection.point.x) * n.x + (mid.y - selection.point.y) * n.y >=
-             -slack * std::hypot(n.x, n.y);
-        break;
-      }
-    }
-    if (in) chosen.push_back(static_cast<std::uint32_t>(k));
+    if (selection_takes(selection, surface.face[k], {0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.0},
+                        slack))
+      chosen.push_back(static_cast<std::uint32_t>(k));
   }
   return chosen;
 }

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "src/core/region.hpp"
+#include "src/core/region3.hpp"
 
 namespace mpsolid {
 
@@ -50,17 +51,22 @@ Surface build_surface(const Shape& shape, const std::vector<Point2>& sites, doub
 
 // A part of a surface: its segments whose reference midpoints lie in a box
 // (edges included), or on the side of a half-plane's line that its normal
-// points to (the line included), or on a named face; all by default.
+// points to (the line included), or on a named face; all by default. In
+// space the same with z (a half-space's plane; src/core/surface3.hpp).
 struct SurfaceSelection {
   enum class Kind { all, face, box, half_plane };
   Kind kind = Kind::all;
   int face = -1;
-  Box2 box;
-  Point2 point, normal;
+  Box3 box;
+  Point3 point, normal;
   bool operator==(const SurfaceSelection&) const = default;
 };
 std::vector<std::uint32_t> select_segments(const Surface& surface,
                                            const SurfaceSelection& selection);
+// Whether the selection takes a piece of surface on `face` whose reference
+// midpoint is `mid` (z = 0 in the plane), `slack` the round-off allowed at
+// its edges.
+bool selection_takes(const SurfaceSelection& selection, int face, Point3 mid, double slack);
 
 // Point k of a list of affine combinations (CSR: `offsets`, the points'
 // `indices` into x, y from `first`, and their `weights`): a surface's node,

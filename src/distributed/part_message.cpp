@@ -186,9 +186,11 @@ void put_load(Writer& w, const StepLoad& l) {
   put_history(w, l.history);
   const PressureSurface& s = l.surface;
   for (const double v : {s.pressure, s.depth}) w.put(v);
-  for (const auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
+  for (const auto* v :
+       {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.quad, &s.targets, &s.slot})
     w.put(*v);
-  for (const auto* v : {&s.weight, &s.x, &s.y, &s.given_fx, &s.given_fy}) w.put(*v);
+  w.put(s.weight);
+  for (const std::vector<double>* v : s.running_fields()) w.put(*v);
 }
 StepLoad get_load(Reader& r) {
   StepLoad l;
@@ -206,13 +208,18 @@ StepLoad get_load(Reader& r) {
   l.history = get_history(r);
   PressureSurface& s = l.surface;
   for (double* v : {&s.pressure, &s.depth}) *v = r.get();
-  for (auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.targets, &s.slot})
+  for (auto* v : {&s.offsets, &s.particle, &s.hosted, &s.from, &s.to, &s.quad, &s.targets, &s.slot})
     *v = r.get_vector<std::uint32_t>();
-  for (auto* v : {&s.weight, &s.x, &s.y, &s.given_fx, &s.given_fy}) *v = r.get_vector<double>();
+  s.weight = r.get_vector<double>();
+  for (std::vector<double>* v : s.running_fields()) *v = r.get_vector<double>();
   s.fx.assign(s.nodes(), 0.0);
   s.fy.assign(s.nodes(), 0.0);
   s.target_fx.assign(s.targets.size(), 0.0);
   s.target_fy.assign(s.targets.size(), 0.0);
+  if (s.in_space()) {
+    s.fz.assign(s.nodes(), 0.0);
+    s.target_fz.assign(s.targets.size(), 0.0);
+  }
   if (l.is_pressure() && l.active) pressure_forces(l);
   return l;
 }

@@ -21,7 +21,7 @@ void write_fields(RigidBody& b, const double* in) {
 // A pressure's running step: its nodes' positions at the step's start (its
 // forces follow from them, or from its given node forces).
 std::size_t fields_of(const StepLoad* l) {
-  return 9 + 2 * l->surface.x.size() + 2 * l->surface.given_fx.size();
+  return 9 + l->surface.running_size();
 }
 void read_fields(const StepLoad& l, double* out) {
   out[0] = l.active ? 1.0 : 0.0;
@@ -29,8 +29,7 @@ void read_fields(const StepLoad& l, double* out) {
        {l.cx_on, l.cy_on, l.cz_on, l.factor, l.cx_last, l.cy_last, l.cz_last, l.work})
     *++out = x;
   ++out;
-  const PressureSurface& s = l.surface;
-  for (const std::vector<double>* v : {&s.x, &s.y, &s.given_fx, &s.given_fy})
+  for (const std::vector<double>* v : l.surface.running_fields())
     out = std::copy(v->begin(), v->end(), out);
 }
 void write_fields(StepLoad& l, const double* in) {
@@ -38,9 +37,8 @@ void write_fields(StepLoad& l, const double* in) {
   for (double* x :
        {&l.cx_on, &l.cy_on, &l.cz_on, &l.factor, &l.cx_last, &l.cy_last, &l.cz_last, &l.work})
     *x = *++in;
-  PressureSurface& s = l.surface;
   ++in;
-  for (std::vector<double>* v : {&s.x, &s.y, &s.given_fx, &s.given_fy}) {
+  for (std::vector<double>* v : l.surface.running_fields()) {
     std::copy_n(in, v->size(), v->begin());
     in += v->size();
   }

@@ -89,10 +89,19 @@ Checkpoint capture_state(const SolverState& state) {
   for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, pose_values(b), b.work});
   for (const StepLoad& l : state.loads) {
-    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work,
-                       l.cz_on, l.cz_last, l.surface.x});
+    c.loads.push_back({l.name,
+                       l.active,
+                       l.cx_on,
+                       l.cy_on,
+                       l.factor,
+                       l.cx_last,
+                       l.cy_last,
+                       l.work,
+                       l.cz_on,
+                       l.cz_last,
+                       {}});
     std::vector<double>& xy = c.loads.back().surface_xy;
-    for (const std::vector<double>* v : {&l.surface.y, &l.surface.given_fx, &l.surface.given_fy})
+    for (const std::vector<double>* v : l.surface.running_fields())
       xy.insert(xy.end(), v->begin(), v->end());
   }
   return c;
@@ -136,11 +145,10 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
       refuse(fmt::format("load '{}' in the checkpoint, '{}' in the case", c.loads[l].name,
                          s.loads[l].name));
     else if (s.loads[l].is_pressure() &&
-             c.loads[l].surface_xy.size() !=
-                 2 * s.loads[l].surface.nodes() + 2 * s.loads[l].surface.given_fx.size())
-      refuse(fmt::format("load '{}' has {} surface nodes in the checkpoint, {} in the case",
-                         c.loads[l].name, c.loads[l].surface_xy.size() / 2,
-                         s.loads[l].surface.nodes()));
+             c.loads[l].surface_xy.size() != s.loads[l].surface.running_size())
+      refuse(fmt::format(
+          "load '{}' keeps {} values of its surface nodes in the checkpoint, {} in the case",
+          c.loads[l].name, c.loads[l].surface_xy.size(), s.loads[l].surface.running_size()));
 
   const std::vector<std::size_t> order = p.storage_of_id();
   for (std::size_t a = 0; a < arrays.size(); ++a) {
@@ -165,15 +173,11 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     s.loads[l].cz_on = c.loads[l].cz_on;
     s.loads[l].cz_last = c.loads[l].cz_last;
     if (StepLoad& load = s.loads[l]; load.is_pressure()) {
-      const std::vector<double>& xy = c.loads[l].surface_xy;
-      const std::size_t n = load.surface.nodes();
-      auto at = xy.begin();
-      for (std::vector<double>* v :
-           {&load.surface.x, &load.surface.y, &load.surface.given_fx, &load.surface.given_fy}) {
+      auto at = c.loads[l].surface_xy.begin();
+      for (std::vector<double>* v : load.surface.running_fields()) {
         std::copy_n(at, v->size(), v->begin());
         at += static_cast<long>(v->size());
       }
-      (void)n;
       if (load.active) pressure_forces(load);
     }
   }

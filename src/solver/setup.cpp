@@ -11,6 +11,7 @@
 #include "src/core/region.hpp"
 #include "src/core/region3.hpp"
 #include "src/core/surface.hpp"
+#include "src/core/surface3.hpp"
 
 namespace mpsolid {
 
@@ -125,6 +126,11 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
       load.fx = l.force[0];
       load.fy = l.force[1];
       load.fz = l.force[2];
+    } else if (l.type == LoadSpec::Type::pressure && spec.dimension == 3) {
+      const Shape3& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape3;
+      const Surface3 surface = build_surface3(shape, fill_shape3(shape, spec.l0), spec.l0);
+      load.surface = make_pressure_surface3(surface, select_quads(surface, l.surface),
+                                            load.range.begin, l.pressure);
     } else if (l.type == LoadSpec::Type::pressure) {
       const Shape& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape;
       const Surface surface = build_surface(shape, fill_shape(shape, spec.l0), spec.l0);

@@ -224,8 +224,8 @@ resumed_as_reference contact "stopped mid-collision at 2 threads, resumed at 1" 
 
 # ---- in space: a spinning cube with a quaternion per particle -------------------
 
-# The paper model turns each particle's quaternion; gravity and a ramped
-# force pull the cube, damped until 0.03 s: stopped at 2 threads, resumed
+# The paper model turns each particle's quaternion; gravity, a ramped force
+# and a ramped pressure on its top push the cube, damped until 0.03 s: stopped at 2 threads, resumed
 # at 1, it ends as the uninterrupted run.
 SPACE=cases/spinning_cube.toml
 SSETS=(--set l0=0.008 --set 'model="paper"' --set output.frame_interval=0.01
@@ -233,7 +233,10 @@ SSETS=(--set l0=0.008 --set 'model="paper"' --set output.frame_interval=0.01
   --set 'loads.g.body="cube"' --set 'loads.g.acceleration=[1.0, 2.0, -9.81]'
   --set 'loads.push.body="cube"' --set 'loads.push.force=[0.5, 0.0, 1.0]'
   --set 'loads.push.history="ramp"' --set loads.push.rise_time=0.03
-  --set damping.coefficient=5.0 --set damping.end=0.03)
+  --set damping.coefficient=5.0 --set damping.end=0.03 --set 'loads.blast.type="pressure"'
+  --set 'loads.blast.body="cube"' --set loads.blast.pressure=2e3
+  --set 'loads.blast.half_space={ point = [0.0, 0.0, 0.02], normal = [0.0, 0.3, 1.0] }'
+  --set 'loads.blast.history="ramp"' --set loads.blast.rise_time=0.03)
 SREF=$TMP/space_reference
 mp space_reference run "$SPACE" "${SSETS[@]}" --set time.end=0.04 --out "$SREF" --threads 1
 SHALF=$TMP/space_half

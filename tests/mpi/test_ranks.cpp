@@ -136,20 +136,25 @@ TEST(Ranks, DecomposedStepGivesTheSerialBits) {
   }
 }
 
-// In space: a spinning cube cut across the ranks, falling under gravity and
-// a ramped force, damped, with every model (the paper models turn a
+// In space: a spinning cube cut across the ranks, falling under gravity, a
+// ramped force and a ramped pressure on its top, damped, with every model (the paper models turn a
 // quaternion per particle).
 TEST(Ranks, DecomposedStepInSpaceGivesTheSerialBits) {
   set_thread_count(1);
   for (const std::string& model : model_names()) {
     SCOPED_TRACE(model);
-    expect_serial_bits(load_case(testing::source_path("cases/spinning_cube.toml"),
-                                 {"l0=0.008", "model=" + model, "loads.g.type=\"acceleration\"",
-                                  "loads.g.body=\"cube\"", "loads.g.acceleration=[1.0, 2.0, -9.81]",
-                                  "loads.push.body=\"cube\"", "loads.push.force=[0.5, 0.0, 1.0]",
-                                  "loads.push.history=\"ramp\"", "loads.push.rise_time=0.002",
-                                  "damping.coefficient=20.0", "damping.end=0.01"}),
-                       300);
+    expect_serial_bits(
+        load_case(testing::source_path("cases/spinning_cube.toml"),
+                  {"l0=0.008", "model=" + model, "loads.g.type=\"acceleration\"",
+                   "loads.g.body=\"cube\"", "loads.g.acceleration=[1.0, 2.0, -9.81]",
+                   "loads.push.body=\"cube\"", "loads.push.force=[0.5, 0.0, 1.0]",
+                   "loads.push.history=\"ramp\"", "loads.push.rise_time=0.002",
+                   "damping.coefficient=20.0", "damping.end=0.01", "loads.blast.type=\"pressure\"",
+                   "loads.blast.body=\"cube\"", "loads.blast.pressure=2e3",
+                   "loads.blast.half_space={ point = [0.0, 0.0, 0.02], normal = "
+                   "[0.0, 0.3, 1.0] }",
+                   "loads.blast.history=\"ramp\"", "loads.blast.rise_time=0.005"}),
+        300);
   }
 }
 

@@ -22,6 +22,7 @@
   every time panel with its criterion and its last frame as the last good
   state; a ring under internal pressure drawn with its two outlines and
   arrows on its inner surface, whose frames' normals point into the hole;
+  in space, a cube's pressed face's arrows on that face's particles;
 - a gas's grid in frames.xdmf (a second temporal collection of cell
   fields on a 2DCoRectMesh, every dataset present with its count) and
   tools/plot_gas.py's schlieren.png and gas_probes.png;
@@ -49,6 +50,7 @@ CASE = os.path.join(ROOT, "cases", "shock_rod.toml")
 CASE_55KN = os.path.join(ROOT, "cases", "shock_rod_55kN_short_wall.toml")
 CASE_RING = os.path.join(ROOT, "cases", "ring_pressure.toml")
 CASE_GAS = os.path.join(ROOT, "cases", "giordano_panel.toml")
+CASE_CUBE = os.path.join(ROOT, "cases", "spinning_cube.toml")
 FIELDS = {"id", "kind", "body", "velocity", "rotation", "angular_velocity", "volumetric_strain",
           "pressure", "surface", "normal"}
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -395,6 +397,21 @@ def check_shapes(folder):
           f"smallest cosine {outward.min():.3f}")
 
 
+def check_space_pressure(folder):
+    """In space, a pressure on a cube's front face (z high): its arrows stand
+    on that face's particles (those whose normals point along +z)."""
+    code, drawn, output = describe(folder)
+    if not check(code == 0 and drawn is not None, "plot.py --describe on the cube exits 0", output):
+        return
+    with h5py.File(os.path.join(folder, "frames.h5"), "r") as f:
+        first = f["frames"]["000000"]
+        position, surface, normal = first["position"][()], first["surface"][()], first["normal"][()]
+    front = (surface == 1) & (position[:, 2] > position[:, 2].max() - 1e-9) & (normal[:, 2] > 0.9)
+    check(drawn["frames"]["pressure_particles"].get("front", 0) == front.sum() > 20,
+          "in space, a pressure's arrows stand on its face's particles",
+          f"{drawn['frames']['pressure_particles']} vs {front.sum()} front face particles")
+
+
 def check_gas(folder):
     """The gas's grid in frames.xdmf (a second temporal collection, a
     2DCoRectMesh of the gas's nodes with its cell fields, each dataset in
@@ -482,6 +499,14 @@ def main():
                              case=CASE_RING, short=False) == 0,
                  "a short run of the ring under internal pressure"):
             check_shapes(ring)
+        cube = os.path.join(tmp, "cube")
+        if check(run_mpsolid(binary, cube, "l0=0.008", "time.end=0.002",
+                             "output.frame_interval=0.001", "output.history_interval=0.001",
+                             "loads.front.type=\"pressure\"",
+                             "loads.front.body=\"cube\"", "loads.front.pressure=1e3",
+                             "loads.front.face=\"front\"", case=CASE_CUBE, short=False) == 0,
+                 "a short run of a cube in space with a pressure on its front face"):
+            check_space_pressure(cube)
         gas = os.path.join(tmp, "gas")
         if check(run_mpsolid(binary, gas, "gas.cell=0.001", "gas.shock.x=-0.002", "time.end=2e-5",
                              "output.frame_interval=1e-5", case=CASE_GAS, short=False) == 0,

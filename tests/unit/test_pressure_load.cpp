@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -106,6 +107,45 @@ TEST(PressureLoad, UniformPressureLeavesAFreeBodyAtRest) {
       "vertices = [[0.0, 0.0], [0.0, 0.02], [0.008, 0.02], [0.008, 0.008], [0.02, 0.008], "
       "[0.02, 0.0]]\nholes = [{ shape = \"circle\", center = [0.004, 0.004], radius = 0.002 }]\n",
       -1e6);
+}
+
+// In space: a pressure on a free box's left face (6 x 4 mm) pushes it along
+// +x with the pressure times the face's area, however the face turns and
+// stretches as the push runs into the box, and the box's symmetry keeps the
+// other momenta and the angular momentum at round-off.
+TEST(PressureLoad, APressureOnABoxsFaceInSpaceGivesItsImpulse) {
+  for (const char* model : {"finite_strain", "paper"}) {
+    const std::string text =
+        fmt::format("name = \"pushed\"\nmodel = \"{}\"\ndimension = 3\nl0 = 0.001\n", model) +
+        "[materials.rubber]\nE = 2.0e6\nnu = 0.3\nrho = 1000.0\n"
+        "[bodies.box]\nkind = \"elastic\"\nmaterial = \"rubber\"\nx = [0.0, 0.01]\n"
+        "y = [-0.003, 0.003]\nz = [-0.002, 0.002]\n"
+        "[loads.push]\ntype = \"pressure\"\nbody = \"box\"\npressure = 1e4\nface = \"left\"\n"
+        "[time]\ndt = \"auto\"\nend = 1e-3\n";
+    Simulation sim(load_case_text(text, "pushed.toml"));
+    sim.advance(400);
+    const Diagnostics d = sim.diagnostics();
+    // The face's area now, from its nodes at the next step's start.
+    const double t = sim.time();
+    sim.advance(1);
+    const PressureSurface& face = sim.state().loads.at(0).surface;
+    std::vector<double> ax(face.nodes(), 0.0), ay(face.nodes(), 0.0), az(face.nodes(), 0.0);
+    add_node_area_vectors(face.quad, {face.x.data(), face.y.data(), face.z.data()}, 1.0,
+                          {ax.data(), ay.data(), az.data()});
+    double area = 0;
+    for (const double a : ax) area -= a;
+    const double area0 = 0.006 * 0.004, impulse = 1e4 * area0 * t;
+    std::printf("%s: area %.6f of its start, momentum %.6f of p A0 t\n", model, area / area0,
+                d.momentum_x / impulse);
+    EXPECT_GT(d.momentum_x, impulse) << model;
+    EXPECT_LT(d.momentum_x, impulse * area / area0) << model;
+    EXPECT_LT(std::hypot(d.momentum_y, d.momentum_z), 1e-12 * impulse) << model;
+    EXPECT_LT(std::hypot(d.angular_momentum_x, d.angular_momentum_y, d.angular_momentum),
+              1e-12 * impulse * 0.01)
+        << model;
+    EXPECT_NEAR(d.external_work, d.kinetic_energy + d.strain_energy, 0.02 * d.external_work)
+        << model;
+  }
 }
 
 // The energy balance's gap KE + SE - W at the end of a blast wave on the
