@@ -28,7 +28,8 @@ bool in_holes(const Shape3& shape, Point3 p) {
                      [&](const Region3& h) { return region3_contains(h, p); });
 }
 
-// Calls site(p) for each lattice site inside the shape, z outer, then y, x.
+// Calls site(p) for each lattice site inside the shape: an extrusion's
+// layer by layer, any other's line by line along its longest extent.
 template <class Site>
 void for_each_site(const Shape3& shape, double l0, Site&& site) {
   if (const auto* e = std::get_if<ExtrusionRegion>(&shape.region)) {
@@ -45,15 +46,26 @@ void for_each_site(const Shape3& shape, double l0, Site&& site) {
     return;
   }
   const Box3 b = shape.bounds();
-  const LatticeSpan kx = lattice_span(b.lo.x, b.hi.x, l0), ky = lattice_span(b.lo.y, b.hi.y, l0),
-                    kz = lattice_span(b.lo.z, b.hi.z, l0);
+  const LatticeSpan span[3] = {lattice_span(b.lo.x, b.hi.x, l0), lattice_span(b.lo.y, b.hi.y, l0),
+                               lattice_span(b.lo.z, b.hi.z, l0)};
+  // The lines along the longest extent (x, then y, then z where extents
+  // tie), so a plate's rows are long enough for the row patterns
+  // (kernels/row_patterns.hpp); then the next longest.
+  int axis[3] = {0, 1, 2};  // inner, middle, outer
+  const auto extent = [&](int a) { return span[a].last - span[a].first; };
+  std::stable_sort(axis, axis + 3, [&](int a, int c) { return extent(a) > extent(c); });
   // One site more on each side than the box's half-open span: the region
   // decides its own surface.
-  for (std::int64_t n = kz.first - 1; n <= kz.last + 1; ++n)
-    for (std::int64_t m = ky.first - 1; m <= ky.last + 1; ++m)
-      for (std::int64_t k = kx.first - 1; k <= kx.last + 1; ++k) {
-        const Point3 p{lattice_coordinate(k, l0), lattice_coordinate(m, l0),
-                       lattice_coordinate(n, l0)};
+  std::int64_t at[3];
+  const auto from = [&](int a) { return span[axis[a]].first - 1; };
+  const auto to = [&](int a) { return span[axis[a]].last + 1; };
+  for (at[2] = from(2); at[2] <= to(2); ++at[2])
+    for (at[1] = from(1); at[1] <= to(1); ++at[1])
+      for (at[0] = from(0); at[0] <= to(0); ++at[0]) {
+        std::int64_t k[3];
+        for (int a = 0; a < 3; ++a) k[axis[a]] = at[a];
+        const Point3 p{lattice_coordinate(k[0], l0), lattice_coordinate(k[1], l0),
+                       lattice_coordinate(k[2], l0)};
         if (region3_contains(shape.region, p) && !in_holes(shape, p)) site(p);
       }
 }

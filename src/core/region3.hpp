@@ -77,8 +77,10 @@ struct Shape3 {
 bool shape3_contains(const Shape3& shape, Point3 p);
 
 // The lattice sites (centres ((k + 1/2) l0, (m + 1/2) l0, (n + 1/2) l0))
-// inside the shape, layer by layer and row by row (z outer, then y, x
-// inner: each layer in the plane's order).
+// inside the shape, line by line along its longest extent, then its next
+// longest (x, then y, then z where extents tie: z outer, then y, x inner
+// for a cube); an extrusion's layer by layer along z, each in the plane's
+// order.
 std::vector<Point3> fill_shape3(const Shape3& shape, double l0);
 // How many there would be, without storing them.
 std::int64_t count_shape3_sites(const Shape3& shape, double l0);
