@@ -82,8 +82,9 @@ _BOX_FACE_PLANES = ((1, 0), (0, 1), (1, 1), (0, 0), (2, 0), (2, 1))
 
 
 def _section_face_distance(position, section, face):
-    """Distance in x-y to a plane section's named face (a rectangle's name
-    or a polygon's edge number), as the plane's faces are chosen."""
+    """Distance in x-y to a plane shape's named face (a rectangle's name or a
+    polygon's edge number): a body's in the plane, an extrusion's section's
+    in space."""
     if section.get("shape", "rectangle") == "rectangle":
         k = RECTANGLE_FACES.index(face)
         c = _rectangle_corners(section)
@@ -135,20 +136,12 @@ def loaded_particles(case, body_names, frame, l0):
             continue
         body = case["bodies"][load["body"]]
         chosen = surface & (frame["body"] == body_names.index(load["body"]))
-        if "face" in load and case.get("dimension", 2) == 3:
-            distance = _face_distance_in_space(position, body, str(load["face"]))
+        if "face" in load:
+            distance = (_face_distance_in_space(position, body, str(load["face"]))
+                        if case.get("dimension", 2) == 3
+                        else _section_face_distance(position, body, load["face"]))
             if distance is not None:
                 chosen &= distance <= 0.75 * l0
-        elif "face" in load:
-            if body.get("shape", "rectangle") == "rectangle":
-                k = RECTANGLE_FACES.index(load["face"])
-                c = _rectangle_corners(body)
-                a, b = c[k], c[(k + 1) % 4]
-            else:
-                v = np.asarray(body["vertices"], float)
-                k = int(load["face"]) - 1
-                a, b = v[k], v[(k + 1) % len(v)]
-            chosen &= _distance_to_segment(position, a, b) <= 0.75 * l0
         elif "box" in load:
             for axis, key in enumerate("xyz"[:position.shape[1]]):
                 if key in load["box"]:

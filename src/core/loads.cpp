@@ -64,13 +64,9 @@ void finish_pressure_surface(PressureSurface& ps) {
     ps.slot.push_back(static_cast<std::uint32_t>(
         std::lower_bound(ps.targets.begin(), ps.targets.end(), i) - ps.targets.begin()));
   for (std::uint32_t k = 0; k < ps.nodes(); ++k) ps.hosted.push_back(k);
-  for (auto* v : {&ps.x, &ps.y, &ps.fx, &ps.fy}) v->assign(ps.nodes(), 0.0);
-  ps.target_fx.assign(ps.targets.size(), 0.0);
-  ps.target_fy.assign(ps.targets.size(), 0.0);
-  if (!ps.in_space()) return;
-  ps.z.assign(ps.nodes(), 0.0);
-  ps.fz.assign(ps.nodes(), 0.0);
-  ps.target_fz.assign(ps.targets.size(), 0.0);
+  for (auto* v : {&ps.x, &ps.y}) v->assign(ps.nodes(), 0.0);
+  if (ps.in_space()) ps.z.assign(ps.nodes(), 0.0);
+  ps.size_forces();
 }
 }  // namespace
 
@@ -132,9 +128,7 @@ PressureSurface local_pressure_surface(const PressureSurface& whole,
                          ? static_cast<std::uint32_t>(at - s.targets.begin())
                          : elsewhere);
   }
-  s.target_fx.assign(s.targets.size(), 0.0);
-  s.target_fy.assign(s.targets.size(), 0.0);
-  if (s.in_space()) s.target_fz.assign(s.targets.size(), 0.0);
+  s.size_target_forces();
   return s;
 }
 

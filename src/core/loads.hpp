@@ -55,7 +55,25 @@ struct PressureSurface {
   std::vector<const std::vector<double>*> running_fields() const {
     return {&x, &y, &given_fx, &given_fy, &z};
   }
-  std::size_t running_size() const { return 2 * x.size() + 2 * given_fx.size() + z.size(); }
+  std::size_t running_size() const {
+    std::size_t n = 0;
+    for (const std::vector<double>* v : running_fields()) n += v->size();
+    return n;
+  }
+  // Sizes the running step's node and target forces (fz, target_fz in
+  // space only), or its target forces alone (a part's copy keeps the
+  // whole's node forces).
+  void size_forces() {
+    fx.assign(nodes(), 0.0);
+    fy.assign(nodes(), 0.0);
+    fz.assign(in_space() ? nodes() : 0, 0.0);
+    size_target_forces();
+  }
+  void size_target_forces() {
+    target_fx.assign(targets.size(), 0.0);
+    target_fy.assign(targets.size(), 0.0);
+    target_fz.assign(in_space() ? targets.size() : 0, 0.0);
+  }
 };
 
 // The segments `segments` of `surface`, whose sites are storage indices

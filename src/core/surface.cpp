@@ -212,6 +212,7 @@ bool selection_takes(const SurfaceSelection& selection, int face, Point3 mid, do
              mid.y <= b.hi.y + slack && mid.z >= b.lo.z - slack && mid.z <= b.hi.z + slack;
     }
     case SurfaceSelection::Kind::half_plane: {
+      // A normal in the plane keeps the plane's arithmetic (and its bits).
       const Point3 n = selection.normal, p = selection.point;
       const double length = n.z == 0 ? std::hypot(n.x, n.y) : std::hypot(n.x, n.y, n.z);
       const double plane = (mid.x - p.x) * n.x + (mid.y - p.y) * n.y;

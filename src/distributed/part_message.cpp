@@ -212,14 +212,7 @@ StepLoad get_load(Reader& r) {
     *v = r.get_vector<std::uint32_t>();
   s.weight = r.get_vector<double>();
   for (std::vector<double>* v : s.running_fields()) *v = r.get_vector<double>();
-  s.fx.assign(s.nodes(), 0.0);
-  s.fy.assign(s.nodes(), 0.0);
-  s.target_fx.assign(s.targets.size(), 0.0);
-  s.target_fy.assign(s.targets.size(), 0.0);
-  if (s.in_space()) {
-    s.fz.assign(s.nodes(), 0.0);
-    s.target_fz.assign(s.targets.size(), 0.0);
-  }
+  s.size_forces();
   if (l.is_pressure() && l.active) pressure_forces(l);
   return l;
 }

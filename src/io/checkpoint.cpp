@@ -50,7 +50,7 @@ std::uint64_t content_hash(const Checkpoint& c) {
     // before loads could vary keep their hashes).
     if (l.factor != 1 || l.cx_last != 0 || l.cy_last != 0 || l.work != 0)
       for (const double v : {l.factor, l.cx_last, l.cy_last, l.work}) h.value(v);
-    for (const double v : l.surface_xy) h.value(v);
+    for (const double v : l.surface_running) h.value(v);
     if (l.cz_on != 0 || l.cz_last != 0)  // in space: the plane's hashes stay
       for (const double v : {l.cz_on, l.cz_last}) h.value(v);
   }
@@ -89,20 +89,11 @@ Checkpoint capture_state(const SolverState& state) {
   for (const RigidBody& b : state.rigid_bodies)
     c.rigid_bodies.push_back({b.name, pose_values(b), b.work});
   for (const StepLoad& l : state.loads) {
-    c.loads.push_back({l.name,
-                       l.active,
-                       l.cx_on,
-                       l.cy_on,
-                       l.factor,
-                       l.cx_last,
-                       l.cy_last,
-                       l.work,
-                       l.cz_on,
-                       l.cz_last,
-                       {}});
-    std::vector<double>& xy = c.loads.back().surface_xy;
+    std::vector<double> running;
     for (const std::vector<double>* v : l.surface.running_fields())
-      xy.insert(xy.end(), v->begin(), v->end());
+      running.insert(running.end(), v->begin(), v->end());
+    c.loads.push_back({l.name, l.active, l.cx_on, l.cy_on, l.factor, l.cx_last, l.cy_last, l.work,
+                       l.cz_on, l.cz_last, std::move(running)});
   }
   return c;
 }
@@ -145,10 +136,10 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
       refuse(fmt::format("load '{}' in the checkpoint, '{}' in the case", c.loads[l].name,
                          s.loads[l].name));
     else if (s.loads[l].is_pressure() &&
-             c.loads[l].surface_xy.size() != s.loads[l].surface.running_size())
+             c.loads[l].surface_running.size() != s.loads[l].surface.running_size())
       refuse(fmt::format(
           "load '{}' keeps {} values of its surface nodes in the checkpoint, {} in the case",
-          c.loads[l].name, c.loads[l].surface_xy.size(), s.loads[l].surface.running_size()));
+          c.loads[l].name, c.loads[l].surface_running.size(), s.loads[l].surface.running_size()));
 
   const std::vector<std::size_t> order = p.storage_of_id();
   for (std::size_t a = 0; a < arrays.size(); ++a) {
@@ -173,7 +164,7 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
     s.loads[l].cz_on = c.loads[l].cz_on;
     s.loads[l].cz_last = c.loads[l].cz_last;
     if (StepLoad& load = s.loads[l]; load.is_pressure()) {
-      auto at = c.loads[l].surface_xy.begin();
+      auto at = c.loads[l].surface_running.begin();
       for (std::vector<double>* v : load.surface.running_fields()) {
         std::copy_n(at, v->size(), v->begin());
         at += static_cast<long>(v->size());
@@ -253,8 +244,8 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     std::vector<double> surfaces;
     std::vector<std::int64_t> surface_sizes;
     for (const auto& l : c.loads) {
-      surfaces.insert(surfaces.end(), l.surface_xy.begin(), l.surface_xy.end());
-      surface_sizes.push_back(static_cast<std::int64_t>(l.surface_xy.size()));
+      surfaces.insert(surfaces.end(), l.surface_running.begin(), l.surface_running.end());
+      surface_sizes.push_back(static_cast<std::int64_t>(l.surface_running.size()));
     }
     loads.write("surface_sizes", surface_sizes);
     loads.write("surfaces", surfaces);
@@ -370,8 +361,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
       std::size_t at = 0;
       for (std::size_t l = 0; l < load_names.size(); ++l) {
         const auto size = static_cast<std::size_t>(sizes[l]);
-        c.loads[l].surface_xy.assign(surfaces.begin() + static_cast<long>(at),
-                                     surfaces.begin() + static_cast<long>(at + size));
+        c.loads[l].surface_running.assign(surfaces.begin() + static_cast<long>(at),
+                                          surfaces.begin() + static_cast<long>(at + size));
         at += size;
       }
     }

@@ -40,9 +40,10 @@ struct LoadState {
   // step's start, work before it.
   double factor = 1, cx_last = 0, cy_last = 0, work = 0;
   double cz_on = 0, cz_last = 0;  // in space
-  // A pressure's: its nodes' x at the last step's start, then their y; a
-  // gas load's then its given node forces, x then y.
-  std::vector<double> surface_xy;
+  // A pressure's running step (PressureSurface::running_fields): its nodes'
+  // x at the last step's start, then their y; a gas load's then its given
+  // node forces, x then y; in space then the nodes' z.
+  std::vector<double> surface_running;
 };
 
 struct Checkpoint {
