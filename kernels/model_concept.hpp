@@ -61,8 +61,8 @@ concept BondModel = requires(M m, const M cm, ParticleStore& p, const ParticleSt
                                         Range range) { cm.compute_forces_block(p, bonds, range); });
 
 // The model's strain energy of the particles of `range` (a current strain
-// pass), summed as ordered_sum sums: one range, or a rank's whole chunks
-// added in chunk order, give the same bits.
+// pass), summed as ordered_sum sums (over ranks, each rank's share of the
+// same chunks: src/distributed/ordered_sum_parts.hpp).
 template <class M>
 double summed_strain_energy(const M& model, const ParticleStore& p, const BondTable& bonds,
                             Range range) {

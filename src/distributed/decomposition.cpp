@@ -4,8 +4,6 @@
 #include <map>
 #include <stdexcept>
 
-#include "src/core/ordered_sum.hpp"
-
 namespace mpsolid {
 
 int Decomposition::owner_of(std::size_t i) const {
@@ -21,36 +19,29 @@ std::vector<double> particle_work(const BondTable& bonds) {
   return work;
 }
 
-Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole,
-                        std::size_t align) {
-  return decompose_costs(particle_work(bonds), ranks, keep_whole, align);
+Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Range>& keep_whole) {
+  return decompose_costs(particle_work(bonds), ranks, keep_whole);
 }
 
 Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
-                              const std::vector<Range>& keep_whole, std::size_t align) {
+                              const std::vector<Range>& keep_whole) {
   if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
-  if (align < 1) throw std::invalid_argument("decompose: cuts at multiples of at least 1");
   const std::size_t n = cost.size();
-  const std::size_t chunks = (n + align - 1) / align;
-  // Work before each chunk boundary.
-  std::vector<double> work(chunks + 1, 0.0);
-  for (std::size_t c = 0; c < chunks; ++c) {
-    double sum = 0.0;
-    for (std::size_t i = c * align; i < std::min(n, (c + 1) * align); ++i) sum += cost[i];
-    work[c + 1] = work[c] + sum;
-  }
+  // Work before each particle.
+  std::vector<double> work(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) work[i + 1] = work[i] + cost[i];
   Decomposition d;
   d.starts.assign(static_cast<std::size_t>(ranks) + 1, n);
   d.starts[0] = 0;
   std::size_t c = 0;
   for (int r = 1; r < ranks; ++r) {
     // The boundary nearest r / ranks of the work, never before the last one.
-    const double target = work[chunks] * r / ranks;
-    while (c < chunks && work[c + 1] <= target) ++c;
-    if (c < chunks && target - work[c] > work[c + 1] - target) ++c;
-    std::size_t cut = std::min(n, c * align);
+    const double target = work[n] * r / ranks;
+    while (c < n && work[c + 1] <= target) ++c;
+    if (c < n && target - work[c] > work[c + 1] - target) ++c;
+    std::size_t cut = c;
     for (const Range& whole : keep_whole)
-      if (cut > whole.begin && cut < whole.end) cut = whole.begin / align * align;
+      if (cut > whole.begin && cut < whole.end) cut = whole.begin;
     d.starts[static_cast<std::size_t>(r)] =
         std::max(d.starts[static_cast<std::size_t>(r) - 1], cut);
   }

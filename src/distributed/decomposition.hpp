@@ -1,12 +1,11 @@
 #pragma once
 // Which rank owns which particles, and the halo each rank needs (docs/mpi.md).
 //
-// A rank owns a contiguous range of storage indices whose ends are
-// multiples of the ordered sums' chunk (kSumChunk): each rank's chunk sums
-// are then the serial run's, and added in chunk order they give the serial
-// bits at any rank count. The ranges are balanced by work (bond entries
-// plus particles). Storage is row by row within each body, so a range is a
-// slab of rows.
+// A rank owns a contiguous range of storage indices, cut anywhere: the
+// global sums take each rank's share of the serial chunks
+// (src/distributed/ordered_sum_parts.hpp), which gives the serial bits at
+// any cut. The ranges are balanced by work (bond entries plus particles).
+// Storage is row by row within each body, so a range is a slab of rows.
 //
 // A rank's ghosts are the particles its owned particles are bonded to and
 // it does not own: the gathers of an owned particle read only its own
@@ -16,7 +15,6 @@
 #include <vector>
 
 #include "src/core/bonds.hpp"
-#include "src/core/ordered_sum.hpp"
 #include "src/core/types.hpp"
 
 namespace mpsolid {
@@ -31,23 +29,21 @@ struct Decomposition {
   int owner_of(std::size_t i) const;
 };
 
-// Contiguous ranges over the bond table's particles for `ranks` ranks, each
-// cut at a multiple of `align` (the ordered sums' chunk for MPI ranks: see
-// above; threads, whose sums are taken on the whole state, cut anywhere),
-// balanced by bond entries + particles. A rank may own nothing when there
-// are fewer pieces than ranks. No cut falls inside a range of `keep_whole`
-// (rigid and loaded bodies, whose sums run over all their particles): such
-// a cut moves down to the multiple of `align` at or before the range's start.
+// Contiguous ranges over the bond table's particles for `ranks` ranks,
+// balanced by bond entries + particles to within a particle's work. A rank
+// may own nothing when there are fewer particles than ranks, or when a body
+// kept whole holds several ranks' shares. No cut falls inside a range of
+// `keep_whole` (rigid and loaded bodies, whose sums run over all their
+// particles): such a cut moves down to the range's start.
 Decomposition decompose(const BondTable& bonds, int ranks,
-                        const std::vector<Range>& keep_whole = {}, std::size_t align = kSumChunk);
+                        const std::vector<Range>& keep_whole = {});
 
 // Each particle's work as decompose counts it: its bond entries plus one.
 std::vector<double> particle_work(const BondTable& bonds);
 // The same cut over given per-particle costs (decompose: particle_work; the
 // threads as ranks re-cut by what each thread measured).
 Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
-                              const std::vector<Range>& keep_whole = {},
-                              std::size_t align = kSumChunk);
+                              const std::vector<Range>& keep_whole = {});
 
 // One rank's halo: its ghosts, and per neighbouring rank what it sends
 // (its own particles that rank needs) and receives (that rank's particles

@@ -9,7 +9,7 @@
 
 namespace mpsolid {
 
-Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align,
+Decomposition decompose_state(const SolverState& global, int ranks,
                               const std::vector<double>* cost) {
   // Rigid bodies and bodies under a force stay on one rank (their sums run
   // over all of them); a pressure's body may be split (its nodes are shared).
@@ -17,8 +17,7 @@ Decomposition decompose_state(const SolverState& global, int ranks, std::size_t 
   for (const RigidBody& b : global.rigid_bodies) whole.push_back(b.range);
   for (const StepLoad& l : global.loads)
     if (!l.is_pressure()) whole.push_back(l.range);
-  return cost ? decompose_costs(*cost, ranks, whole, align)
-              : decompose(global.bonds, ranks, whole, align);
+  return cost ? decompose_costs(*cost, ranks, whole) : decompose(global.bonds, ranks, whole);
 }
 
 std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vector<double>& mine,
@@ -63,6 +62,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.layout = std::move(local.layout);
   part.halo = std::move(local.halo);
   part.local = std::move(local.state);
+  part.particles_in_run = local.decomposition.starts.back();
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
@@ -99,10 +99,12 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
                    p.strain.begin() + static_cast<long>(owned.end));
         out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
                    p.pressure.begin() + static_cast<long>(owned.end));
-        // Owned ranges start at a chunk boundary: each chunk is a serial one.
-        for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk)
-          out.push_back(
-              summed_strain_energy(model, p, s.bonds, {b, std::min(owned.end, b + kSumChunk)}));
+        // The owned range's share of the serial chunks (a cut may fall
+        // inside one).
+        ordered_sum_part<1>(0, part.particles_in_run, layout.owned_global, [&](std::size_t g) {
+          const std::size_t i = owned.begin + (g - layout.owned_global.begin);
+          return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
+        }).append_to(out);
         const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
         out.push_back(r.value);
         out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));
@@ -115,13 +117,14 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
 }
 
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
-                      ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields) {
+                      ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
+                      RankFields& fields) {
   for (std::vector<double>* field : {&global.strain, &global.pressure}) {
     std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
                 field->begin() + static_cast<long>(owned.begin));
     at += owned.size();
   }
-  for (std::size_t b = owned.begin; b < owned.end; b += kSumChunk) chunk_sums.push_back(in[at++]);
+  energy_parts.push_back(OrderedSumPart<1>::read(in, at));
   IntegrityReport r;
   r.value = in[at++];
   r.particle = static_cast<std::size_t>(in[at++]);

@@ -22,6 +22,7 @@
 #include "src/core/timers.hpp"
 #include "src/distributed/halo_exchange.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/ordered_sum_parts.hpp"
 #include "src/distributed/part_message.hpp"
 #include "src/distributed/rank_group.hpp"
 #include "src/solver/distributed_contact.hpp"
@@ -37,8 +38,9 @@ struct RankPart {
   SolverState local;
   RankContact contact;
   AnyModel model;
-  HaloCost halo_cost;  // summed over every step so far
-  RankTimes times;     // the passes' wall time, summed likewise
+  HaloCost halo_cost;                // summed over every step so far
+  RankTimes times;                   // the passes' wall time, summed likewise
+  std::size_t particles_in_run = 0;  // over every rank: the ordered sums' range
   // The owned particles bonded to no ghost (local indices; empty at its
   // end when there are none): their forces read only owned fields.
   Range bonded_to_owned_only;
@@ -134,8 +136,9 @@ class OverRanks {
 // The strain pass of the part's own particles at their current positions
 // (half angles, the halos, the strain pass), as the serial refresh_fields
 // gives them, then what rank 0's checks and outputs need of them, appended
-// to `out`: the owned particles' strain and pressure, their strain energy
-// summed in the ordered sums' whole chunks, and the model's integrity check
+// to `out`: the owned particles' strain and pressure, their share of the
+// strain energy's ordered sum (src/distributed/ordered_sum_parts.hpp), and
+// the model's integrity check
 // among them (value, particle and neighbour in global storage indices,
 // failed, the criterion's characters).
 void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityLimits& limits,
@@ -143,20 +146,21 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
 
 // What rank 0 reads of every rank's fields.
 struct RankFields {
-  double strain_energy = 0;   // the chunk sums added in chunk order: the serial bits
+  double strain_energy = 0;   // the ranks' parts combined: the serial bits
   IntegrityReport integrity;  // the worst over the ranks (the first on ties)
 };
 // Reads one rank's fields (as append_rank_fields wrote them from `owned`,
 // the rank's global storage range) into the whole state's strain and
-// pressure, its chunk sums onto `chunk_sums`, and its integrity report
-// into `fields` when worse.
+// pressure, its part of the strain energy onto `energy_parts`, and its
+// integrity report into `fields` when worse.
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
-                      ParticleStore& global, std::vector<double>& chunk_sums, RankFields& fields);
+                      ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
+                      RankFields& fields);
 
 // The cut of the set-up state `global` over `ranks`, rigid bodies and
-// bodies under a force kept whole, each cut at a multiple of `align` particles, balancing
-// `cost` per particle (null: particle_work).
-Decomposition decompose_state(const SolverState& global, int ranks, std::size_t align = kSumChunk,
+// bodies under a force kept whole, balancing `cost` per particle (null:
+// particle_work).
+Decomposition decompose_state(const SolverState& global, int ranks,
                               const std::vector<double>* cost = nullptr);
 
 // A rank's part ready to step: its local part (as rank 0 sends it) with the

@@ -210,7 +210,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   RankFields out;
   if (!how.answered()) return out;
   if (how.bring_back) rank_times_.clear();
-  std::vector<double> chunk_sums;
+  std::vector<OrderedSumPart<1>> energy_parts;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
@@ -220,9 +220,9 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
       rank_times_.push_back(read_report(back, at, r, global.contact));
       at += kReportSize;
     }
-    if (how.fields) read_rank_fields(back, at, d.owned(r), global.particles, chunk_sums, out);
+    if (how.fields) read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out);
   }
-  for (const double s : chunk_sums) out.strain_energy += s;  // in chunk order
+  if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   return out;
 }
 

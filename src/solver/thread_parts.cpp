@@ -37,7 +37,7 @@ bool ThreadParts::on_each_thread(F&& f) {
 
 ThreadParts::ThreadParts(const CaseSpec& spec, const SolverState& global, int threads)
     : spec_(spec),
-      decomposition_(decompose_state(global, threads, 1)),
+      decomposition_(decompose_state(global, threads)),
       parts_(static_cast<std::size_t>(threads)) {
   build(global);
 }
@@ -88,7 +88,7 @@ void ThreadParts::rebalance(SolverState& global) {
       cost[i] = work[i] * busy[static_cast<std::size_t>(t)] / total;
   }
   ++recuts_;
-  const Decomposition next = decompose_state(global, threads(), 1, &cost);
+  const Decomposition next = decompose_state(global, threads(), &cost);
   if (next.starts != decomposition_.starts) cut_again(global, next);
 }
 

@@ -15,6 +15,7 @@
 #include "src/distributed/communicator.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/local_state.hpp"
+#include "src/distributed/ordered_sum_parts.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/simulation.hpp"
@@ -74,7 +75,7 @@ TEST(Ranks, HaloExchangeGivesEveryGhostTheSerialValue) {
       EXPECT_FALSE(std::isnan(x[sim.state().bonds.neighbor[k]]));
 }
 
-TEST(Ranks, ChunkSumsGatheredInRankOrderGiveTheSerialBits) {
+TEST(Ranks, SumPartsGatheredInRankOrderGiveTheSerialBits) {
   const Communicator& world = Communicator::world();
   Simulation sim = moved_rod();
   const ParticleStore& p = sim.particles();
@@ -83,15 +84,16 @@ TEST(Ranks, ChunkSumsGatheredInRankOrderGiveTheSerialBits) {
   };
   const double serial = ordered_sum<1>(0, p.size(), term)[0];
   const Decomposition d = decompose(sim.state().bonds, world.size());
-  const Range mine = d.owned(world.rank());
-  // This rank's chunks are whole chunks of the serial sum.
-  std::vector<double> partial;
-  for (std::size_t b = mine.begin; b < mine.end; b += kSumChunk)
-    partial.push_back(ordered_sum<1>(b, std::min(mine.end, b + kSumChunk), term)[0]);
-  const std::vector<double> all = world.all_gather(partial);
-  ASSERT_EQ(all.size(), (p.size() + kSumChunk - 1) / kSumChunk);
-  double total = 0;
-  for (const double s : all) total += s;
+  // This rank's share of the serial chunks (a cut may fall inside one),
+  // each rank's part after the other in rank order.
+  std::vector<double> mine;
+  ordered_sum_part<1>(0, p.size(), d.owned(world.rank()), term).append_to(mine);
+  const std::vector<double> all = world.all_gather(mine);
+  std::vector<OrderedSumPart<1>> parts;
+  std::size_t at = 0;
+  for (int r = 0; r < world.size(); ++r) parts.push_back(OrderedSumPart<1>::read(all, at));
+  ASSERT_EQ(at, all.size());
+  const double total = combine_ordered_sum(parts)[0];
   EXPECT_TRUE(same_bits(total, serial)) << total << " vs " << serial;
 }
 
