@@ -18,7 +18,6 @@
 #include "src/app/thread_governor.hpp"
 #include "src/core/hash.hpp"
 #include "src/core/parallel.hpp"
-#include "src/core/state_snapshot.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/folder_lock.hpp"
@@ -166,7 +165,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
   // The current state as a frame (its fields must be fresh).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(sim.state(), sim.spec(), d, sim.gas_frame());
+    outputs.write_frame(sim.state_with_fields(), sim.spec(), d, sim.gas_frame());
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {
@@ -180,8 +179,7 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     write_frame(sim.diagnostics());
     checkpoint();
   }
-  StateSnapshot last_good = StateSnapshot::capture(sim.state());
-  sim.remember_gas();
+  sim.keep_good();
   facts.outcome = Outcome::completed;
   ThreadGovernor governor(facts.threads, options.adaptive_threads);
   while (sim.step() < every.total) {
@@ -202,16 +200,14 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     const StabilityVerdict verdict = sim.check_stability(&d);
     if (!verdict.ok) {
       facts.outcome = Outcome::unstable;
-      facts.diagnosis = describe_failure(sim, verdict, last_good.step);
-      facts.diagnosis_json = failure_json(sim, verdict, last_good.step);
+      facts.diagnosis = describe_failure(sim, verdict, sim.good_step());
+      facts.diagnosis_json = failure_json(sim, verdict, sim.good_step());
       // Keep the last good state as the final frame of the outputs.
-      last_good.restore(sim.state_to_change());
-      sim.restore_gas();
+      sim.restore_good();
       if (sim.step() != outputs.last_frame_step()) write_frame(sim.diagnostics());
       break;
     }
-    last_good = StateSnapshot::capture(sim.state());
-    sim.remember_gas();
+    sim.keep_good();
     const std::int64_t step = sim.step();
     if (step == every.total || step % every.frame == 0) write_frame(d);
     if (step % every.history == 0) {

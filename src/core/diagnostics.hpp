@@ -1,4 +1,6 @@
 #pragma once
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 // Whole-system figures at a frame: energies (MODEL.md section 4b), momenta
@@ -49,6 +51,15 @@ inline double speed_squared(const ParticleStore& p, std::size_t i) {
 
 // Kinetic energy, momenta and max speed of the moving particles.
 Diagnostics motion_diagnostics(const ParticleStore& p);
+
+// What motion_diagnostics sums per particle, in ordered sums of one
+// component each: kinetic energy, momentum x, y, z, angular momentum about
+// x, y, z, damping loss (in the plane z momentum and the x, y angular
+// momenta are 0), and the figures from the sums and the largest |v|^2 (the
+// same from the whole state or from ranks' shares).
+inline constexpr std::size_t kMotionSums = 8;
+std::array<double, kMotionSums> motion_terms(const ParticleStore& p, std::size_t i);
+Diagnostics motion_from_sums(const std::array<double, kMotionSums>& sums, double max_speed2);
 
 // Everything, with the model's strain energy already summed (in the ordered
 // sums' chunk order, on one rank or from the ranks' chunk sums).

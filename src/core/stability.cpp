@@ -7,35 +7,46 @@
 
 namespace mpsolid {
 
-StabilityVerdict check_finite(const ParticleStore& p) {
-  StabilityVerdict v;
+bool state_is_finite(const ParticleStore& p, std::size_t i) {
   // Every state row of the store's dimension (positions, velocities,
-  // rotations, spins), particle by particle: the first bad particle.
+  // rotations, spins).
   const std::vector<StateArray> arrays = state_arrays(p.dimension);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (std::all_of(arrays.begin(), arrays.end(),
-                    [&](const StateArray& a) { return std::isfinite((p.*a.member)[i]); }))
-      continue;
-    v.ok = false;
-    v.criterion = "non-finite state (NaN or Inf in position, velocity or rotation)";
-    v.particle = i;
-    return v;
-  }
+  return std::all_of(arrays.begin(), arrays.end(),
+                     [&](const StateArray& a) { return std::isfinite((p.*a.member)[i]); });
+}
+
+StabilityVerdict non_finite_verdict(std::size_t particle) {
+  StabilityVerdict v;
+  v.ok = false;
+  v.criterion = "non-finite state (NaN or Inf in position, velocity or rotation)";
+  v.particle = particle;
   return v;
 }
 
-StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
-  StabilityVerdict v;
+StabilityVerdict check_finite(const ParticleStore& p) {
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!state_is_finite(p, i)) return non_finite_verdict(i);
+  return {};
+}
+
+Fastest fastest_moving(const ParticleStore& p) {
   const Range r = p.moving();
-  double fastest2 = -1.0;
+  Fastest f;
   for (std::size_t i = r.begin; i < r.end; ++i) {
     const double s2 = speed_squared(p, i);
-    if (s2 > fastest2) {
-      fastest2 = s2;
-      v.particle = i;
-    }
+    if (s2 > f.speed2) f = {i, s2};
   }
-  v.value = std::sqrt(std::max(fastest2, 0.0));
+  return f;
+}
+
+StabilityVerdict check_speed(const ParticleStore& p, double limit_speed) {
+  return speed_verdict(fastest_moving(p), limit_speed);
+}
+
+StabilityVerdict speed_verdict(const Fastest& fastest, double limit_speed) {
+  StabilityVerdict v;
+  v.particle = fastest.particle;
+  v.value = std::sqrt(std::max(fastest.speed2, 0.0));
   v.limit = limit_speed;
   if (v.value > limit_speed) {
     v.ok = false;

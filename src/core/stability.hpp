@@ -27,9 +27,21 @@ struct StabilityVerdict {
 
 // First non-finite position, velocity, rotation or angular velocity.
 StabilityVerdict check_finite(const ParticleStore& p);
+// Whether particle i's state is finite, and the verdict naming the first
+// that is not (check_finite's, from the whole state or from ranks).
+bool state_is_finite(const ParticleStore& p, std::size_t i);
+StabilityVerdict non_finite_verdict(std::size_t particle);
 
 // The fastest moving particle against the limit speed.
 StabilityVerdict check_speed(const ParticleStore& p, double limit_speed);
+// The first fastest moving particle and its |v|^2 (-1: no moving particle),
+// and check_speed's verdict of it (from the whole state or from ranks).
+struct Fastest {
+  std::size_t particle = 0;
+  double speed2 = -1.0;
+};
+Fastest fastest_moving(const ParticleStore& p);
+StabilityVerdict speed_verdict(const Fastest& fastest, double limit_speed);
 
 // |KE + PE - W - E0| against tolerance * max(peak W, E0, floor); the peak
 // external work so far, not the current W, which falls when the body pushes

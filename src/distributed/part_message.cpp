@@ -237,6 +237,7 @@ LocalPart local_part(const SolverState& global, const Decomposition& d, int rank
   part.layout = local_layout(d, plan, rank, global.contact.candidates);
   part.halo = local_halo(plan, part.layout);
   part.state = local_solver_state(global, part.layout);
+  part.moving_begin = global.particles.moving().begin;
   return part;
 }
 
@@ -247,6 +248,7 @@ void pack_local_part(const LocalPart& part,
   w.put(part.layout.global_of);
   w.put(part.layout.owned);
   w.put(part.layout.owned_global);
+  w.put(static_cast<double>(part.moving_begin));
   w.put(part.halo.peers);
   put_items(w, part.halo.send, [](Writer& o, const auto& list) { o.put(list); });
   put_items(w, part.halo.receive, [](Writer& o, const auto& list) { o.put(list); });
@@ -285,6 +287,7 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   part.layout.global_of = r.get_vector<std::uint32_t>();
   part.layout.owned = r.get_range();
   part.layout.owned_global = r.get_range();
+  part.moving_begin = r.get_as<std::size_t>();
   part.halo.peers = r.get_vector<int>();
   const auto list = [](Reader& in) { return in.get_vector<std::uint32_t>(); };
   part.halo.send = get_items<std::vector<std::uint32_t>>(r, list);

@@ -21,6 +21,9 @@ struct LocalPart {
   LocalLayout layout;
   LocalHalo halo;     // in local indices (no buffers)
   SolverState state;  // local_solver_state: no body ranges or probes
+  // The run's first moving particle (global storage index): where the
+  // motion sums' chunks start.
+  std::size_t moving_begin = 0;
 };
 
 // The part of `rank` in the set-up state `global`, cut by `d`, with every

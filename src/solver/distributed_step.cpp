@@ -63,6 +63,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.halo = std::move(local.halo);
   part.local = std::move(local.state);
   part.particles_in_run = local.decomposition.starts.back();
+  part.moving_begin = local.moving_begin;
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
@@ -86,7 +87,7 @@ void advance_rank_part(RankPart& part, const RankGroup& world, double dt, std::i
 }
 
 void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityLimits& limits,
-                        std::vector<double>& out) {
+                        std::vector<double>& out, bool arrays) {
   SolverState& s = part.local;
   ParticleStore& p = s.particles;
   const LocalLayout& layout = part.layout;
@@ -95,10 +96,12 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
   std::visit(
       [&](auto& model) {
         strain_fields(model, s, place);
-        out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
-                   p.strain.begin() + static_cast<long>(owned.end));
-        out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
-                   p.pressure.begin() + static_cast<long>(owned.end));
+        if (arrays) {
+          out.insert(out.end(), p.strain.begin() + static_cast<long>(owned.begin),
+                     p.strain.begin() + static_cast<long>(owned.end));
+          out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
+                     p.pressure.begin() + static_cast<long>(owned.end));
+        }
         // The owned range's share of the serial chunks (a cut may fall
         // inside one).
         ordered_sum_part<1>(0, part.particles_in_run, layout.owned_global, [&](std::size_t g) {
@@ -118,8 +121,9 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
 
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
                       ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
-                      RankFields& fields) {
+                      RankFields& fields, bool arrays) {
   for (std::vector<double>* field : {&global.strain, &global.pressure}) {
+    if (!arrays) break;
     std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
                 field->begin() + static_cast<long>(owned.begin));
     at += owned.size();

@@ -41,6 +41,7 @@ struct RankPart {
   HaloCost halo_cost;                // summed over every step so far
   RankTimes times;                   // the passes' wall time, summed likewise
   std::size_t particles_in_run = 0;  // over every rank: the ordered sums' range
+  std::size_t moving_begin = 0;      // the run's first moving particle (global)
   // The owned particles bonded to no ghost (local indices; empty at its
   // end when there are none): their forces read only owned fields.
   Range bonded_to_owned_only;
@@ -141,8 +142,9 @@ class OverRanks {
 // the model's integrity check
 // among them (value, particle and neighbour in global storage indices,
 // failed, the criterion's characters).
+// Without `arrays`, the strain and pressure are left out (a check's round).
 void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityLimits& limits,
-                        std::vector<double>& out);
+                        std::vector<double>& out, bool arrays = true);
 
 // What rank 0 reads of every rank's fields.
 struct RankFields {
@@ -155,7 +157,7 @@ struct RankFields {
 // integrity report into `fields` when worse.
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
                       ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
-                      RankFields& fields);
+                      RankFields& fields, bool arrays = true);
 
 // The cut of the set-up state `global` over `ranks`, rigid bodies and
 // bodies under a force kept whole, balancing `cost` per particle (null:

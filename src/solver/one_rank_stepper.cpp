@@ -62,6 +62,17 @@ void OneRankStepper::bring_to_rank_zero(SolverState& state) {
   parts_ahead_ = false;
 }
 
+void OneRankStepper::keep_good(SolverState& state) {
+  bring_to_rank_zero(state);
+  good_ = StateSnapshot::capture(state);
+}
+
+void OneRankStepper::restore_good(SolverState& state) {
+  bring_to_rank_zero(state);
+  good_.restore(state);
+  state_changed();
+}
+
 ThreadCrossing OneRankStepper::thread_crossing() const {
   return parts_ ? parts_->crossing() : crossing_;
 }

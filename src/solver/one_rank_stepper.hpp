@@ -9,6 +9,7 @@
 
 #include "kernels/model_registry.hpp"
 #include "src/case/case_spec.hpp"
+#include "src/core/state_snapshot.hpp"
 #include "src/solver/stepper.hpp"
 #include "src/solver/thread_parts.hpp"
 
@@ -29,6 +30,9 @@ class OneRankStepper final : public Stepper {
                                   const IntegrityLimits& limits) const override;
   void bring_to_rank_zero(SolverState& state) override;
   void state_changed() override { parts_behind_ = true; }
+  void keep_good(SolverState& state) override;
+  void restore_good(SolverState& state) override;
+  std::int64_t good_step() const override { return good_.step; }
   std::vector<RankTimes> rank_times() const override { return {}; }
   ThreadCrossing thread_crossing() const override;
 
@@ -39,6 +43,7 @@ class OneRankStepper final : public Stepper {
   bool parts_ahead_ = false;   // stepped since the whole state got their particles
   bool parts_behind_ = false;  // the whole state changed since they took it
   ThreadCrossing crossing_;    // of parts made for an earlier thread count
+  StateSnapshot good_;         // the last good state
 };
 
 }  // namespace mpsolid

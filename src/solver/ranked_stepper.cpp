@@ -20,6 +20,7 @@ struct RankStepping {
   IntegrityLimits limits;
   Decomposition decomposition;         // rank 0: who owns what
   std::int64_t rebuilds_reported = 0;  // this rank's contact list rebuilds
+  std::vector<double> good;            // the last good slice (step first), as sent
 };
 
 namespace {
@@ -89,30 +90,38 @@ void take_slice(RankPart& p, const std::vector<double>& slice) {
 std::vector<double> step_and_report(RankStepping& parts, const Communicator& world,
                                     std::int64_t steps, Exchange how) {
   RankPart& p = parts.part;
+  if (how.restore_good) take_slice(p, parts.good);
   if (steps > 0) advance_rank_part(p, world, parts.dt, steps);
+  if (how.keep_good) {
+    parts.good.assign(1, static_cast<double>(p.local.step));
+    StateSlice::append(p.local, p.layout.owned, parts.good);
+  }
   std::vector<double> back;
   if (how.bring_back) {
     StateSlice::append(p.local, p.layout.owned, back);
     append_report(p, p.local.contact.rebuilds - parts.rebuilds_reported, back);
     parts.rebuilds_reported = p.local.contact.rebuilds;
   }
-  if (how.fields) append_rank_fields(p, world, parts.limits, back);
+  if (how.fields) append_rank_fields(p, world, parts.limits, back, !how.check);
+  if (how.check) append_rank_check(p, back);
   return back;
 }
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 8;
+constexpr std::int64_t kExchangeFlags = 64;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
-         (how.fields ? 4 : 0);
+         (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
+         (how.restore_good ? 32 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
 }
 Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0, (flags & 2) != 0, (flags & 4) != 0};
+  return {(flags & 1) != 0, (flags & 2) != 0,  (flags & 4) != 0,
+          (flags & 8) != 0, (flags & 16) != 0, (flags & 32) != 0};
 }
 }  // namespace
 
@@ -183,6 +192,28 @@ void RankedStepper::refresh_fields(SolverState& global, PhaseTimers& timers) {
   ranks_behind_ = ranks_ahead_ = false;
 }
 
+CheckFigures RankedStepper::check_figures(SolverState& global, PhaseTimers& timers) {
+  auto t = timers.time(Phase::strain);
+  fields_ = exchange(global, 0, {.send_slices = ranks_behind_, .fields = true, .check = true});
+  ranks_behind_ = false;
+  return check_;
+}
+
+void RankedStepper::keep_good(SolverState& global) {
+  exchange(global, 0, {.send_slices = ranks_behind_, .keep_good = true});
+  ranks_behind_ = false;
+  good_step_ = global.step;
+  good_peak_work_ = global.peak_work;
+}
+
+void RankedStepper::restore_good(SolverState& global) {
+  if (good_step_ < 0) throw std::logic_error("restore_good: no good state kept");
+  exchange(global, 0, {.restore_good = true});
+  global.peak_work = good_peak_work_;
+  ranks_behind_ = false;
+  ranks_ahead_ = true;  // rank 0's copy follows at its next read
+}
+
 void RankedStepper::bring_to_rank_zero(SolverState& global) {
   if (!ranks_ahead_) return;
   exchange(global, 0, {.bring_back = true});
@@ -211,6 +242,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (!how.answered()) return out;
   if (how.bring_back) rank_times_.clear();
   std::vector<OrderedSumPart<1>> energy_parts;
+  RankChecks checks;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
@@ -220,9 +252,12 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
       rank_times_.push_back(read_report(back, at, r, global.contact));
       at += kReportSize;
     }
-    if (how.fields) read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out);
+    if (how.fields)
+      read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out, !how.check);
+    if (how.check) checks.read(back, at);
   }
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
+  if (how.check) check_ = checks.finish(global, d, out);
   return out;
 }
 

@@ -25,15 +25,19 @@
 #include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/rank_checks.hpp"
 #include "src/solver/stepper.hpp"
 
 namespace mpsolid {
 
 // What a batch moves between rank 0 and the ranks besides the command.
 struct Exchange {
-  bool send_slices = false;  // before the steps: rank 0's copy changed
-  bool bring_back = false;   // after them: rank 0 reads the state
-  bool fields = false;       // and the fields of the current positions
+  bool send_slices = false;   // before the steps: rank 0's copy changed
+  bool bring_back = false;    // after them: rank 0 reads the state
+  bool fields = false;        // and the fields of the current positions
+  bool check = false;         // with the fields, a check's figures instead of their arrays
+  bool keep_good = false;     // each rank keeps its slice as the last good state
+  bool restore_good = false;  // before the steps: each rank puts it back
   // Whether each rank sends rank 0 a message after the steps.
   bool answered() const { return bring_back || fields; }
 };
@@ -90,6 +94,13 @@ class RankedStepper final : public Stepper {
   }
   void bring_to_rank_zero(SolverState& global) override;
   void state_changed() override { ranks_behind_ = true; }
+  // A check's figures from the ranks' shares: no slice moves.
+  bool checks_on_ranks() const override { return true; }
+  CheckFigures check_figures(SolverState& global, PhaseTimers& timers) override;
+  // Each rank keeps (and puts back) its own slice; no slice moves.
+  void keep_good(SolverState& global) override;
+  void restore_good(SolverState& global) override;
+  std::int64_t good_step() const override { return good_step_; }
   // As of the last batch that brought the slices back, with the slices' moves.
   std::vector<RankTimes> rank_times() const override;
   // Each rank steps with its threads forking and joining per loop.
@@ -99,7 +110,8 @@ class RankedStepper final : public Stepper {
   // Tells the followers; with `send_slices`, sends every rank its owned
   // slice of `global` (its particles, bodies and loads); `steps` decomposed
   // steps on every rank (0: none); with `bring_back`, the slices and each
-  // rank's report come back into `global`; with `fields`, the fields round.
+  // rank's report come back into `global`; with `fields`, the fields round
+  // (with `check`, a check's figures into check_).
   RankFields exchange(SolverState& global, std::int64_t steps, Exchange how);
   // Counts a move of rank r's slice of `doubles` values.
   void count_slice_move(int r, std::size_t doubles);
@@ -112,8 +124,11 @@ class RankedStepper final : public Stepper {
   };
   std::vector<SliceMoves> slice_moves_;  // per rank
   RankFields fields_;                    // of the last fields round
-  bool ranks_ahead_ = false;             // stepped since rank 0's copy was brought back
-  bool ranks_behind_ = false;            // rank 0's copy changed since they got it
+  CheckFigures check_;                   // of the last check's round
+  std::int64_t good_step_ = -1;          // of the ranks' last good slices
+  double good_peak_work_ = 0;
+  bool ranks_ahead_ = false;   // stepped since rank 0's copy was brought back
+  bool ranks_behind_ = false;  // rank 0's copy changed since they got it
 };
 
 // A follower's whole life: receives the case, sets its part up, and steps

@@ -76,6 +76,7 @@ void Simulation::advance(std::int64_t steps) {
 
 void Simulation::refresh_fields() {
   stepper_->refresh_fields(state_, timers_);
+  fields_on_ranks_ = false;
   if (state_.contact.enabled()) {
     auto t = timers_.time(Phase::contact);
     refresh_contact_list(state_.contact, state_.particles, state_.bonds);
@@ -85,6 +86,11 @@ void Simulation::refresh_fields() {
 const SolverState& Simulation::state() {
   stepper_->bring_to_rank_zero(state_);
   return state_;
+}
+
+const SolverState& Simulation::state_with_fields() {
+  if (fields_on_ranks_) refresh_fields();
+  return state();
 }
 
 SolverState& Simulation::state_to_change() {
@@ -122,10 +128,16 @@ GasFrame Simulation::gas_frame() const {
   return gas_ ? gas_->frame() : GasFrame{};
 }
 
-void Simulation::remember_gas() {
+void Simulation::keep_good() {
+  stepper_->keep_good(state_);
   // What a checkpoint keeps (the conserved fields, the walls, the balance):
   // a fifth of the solver's arrays.
   if (gas_) gas_last_good_ = gas_->saved();
+}
+
+void Simulation::restore_good() {
+  stepper_->restore_good(state_);
+  restore_gas();
 }
 
 std::vector<std::pair<std::string, std::vector<double>>> Simulation::gas_saved() const {
@@ -144,8 +156,13 @@ void Simulation::restore_gas() {
   gas_failure_.clear();
 }
 
+bool Simulation::checks_on_ranks() const {
+  if (!stepper_->checks_on_ranks() || state_.contact.enabled() || gas_) return false;
+  return std::none_of(state_.loads.begin(), state_.loads.end(),
+                      [](const StepLoad& l) { return l.is_pressure(); });
+}
+
 StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
-  const ParticleStore& p = state().particles;
   if (gas_failed()) {
     StabilityVerdict gas;
     gas.ok = false;
@@ -153,12 +170,29 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     gas.where = gas_failure_;
     return gas;
   }
-  StabilityVerdict v = check_finite(p);
-  if (!v.ok) return v;
+  if (checks_on_ranks()) {
+    fields_on_ranks_ = true;
+    return judge(stepper_->check_figures(state_, timers_), diagnostics_out);
+  }
+  CheckFigures f;
+  const ParticleStore& p = state().particles;
+  f.finite = check_finite(p);
+  if (!f.finite.ok) return f.finite;
   refresh_fields();
+  {
+    auto t = timers_.time(Phase::diagnostics);
+    f.integrity = stepper_->check_integrity(state_, {spec_.stability.min_jacobian});
+    f.fastest = fastest_moving(p);
+    if (!f.integrity.failed) f.diagnostics = current_diagnostics();
+  }
+  return judge(f, diagnostics_out);
+}
+
+StabilityVerdict Simulation::judge(const CheckFigures& f, Diagnostics* diagnostics_out) {
+  if (!f.finite.ok) return f.finite;
   auto t = timers_.time(Phase::diagnostics);
-  const IntegrityReport integrity =
-      stepper_->check_integrity(state_, {spec_.stability.min_jacobian});
+  StabilityVerdict v;
+  const IntegrityReport& integrity = f.integrity;
   if (integrity.failed) {
     v.ok = false;
     v.criterion = integrity.criterion;
@@ -169,6 +203,7 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     return v;
   }
   if (state_.contact.enabled()) {
+    const ParticleStore& p = state_.particles;
     StabilityVerdict touch = check_interpenetration(state_.contact, p);
     if (!touch.ok && !touch.has_neighbor) {  // they parted again: name the closest pair now
       const ClosestContact closest =
@@ -180,9 +215,9 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     }
     if (!touch.ok) return touch;
   }
-  const StabilityVerdict speed = check_speed(p, limit_speed_);
+  const StabilityVerdict speed = speed_verdict(f.fastest, limit_speed_);
   if (!speed.ok) return speed;
-  const Diagnostics d = current_diagnostics();
+  const Diagnostics& d = f.diagnostics;
   if (diagnostics_out) *diagnostics_out = d;
   state_.peak_work = std::max(state_.peak_work, d.external_work);
   // Symplectic Euler's velocities lag the positions by half a step, so after

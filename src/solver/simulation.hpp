@@ -59,6 +59,10 @@ class Simulation {
   // The current state, to change (a restore): over ranks, the next step
   // sends the ranks their slices of it again.
   SolverState& state_to_change();
+  // The current state with the fields of its positions (strain, pressure),
+  // for a frame: after a check over ranks, which leaves them on the ranks,
+  // the fields round runs again.
+  const SolverState& state_with_fields();
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
@@ -78,10 +82,11 @@ class Simulation {
   // Whether the gas went unphysical in an advance (which then stopped at
   // the window where it did; check_stability reports it).
   bool gas_failed() const { return !gas_failure_.empty(); }
-  // The gas as it is now kept, or put back, as the last good state (with
-  // the particles' StateSnapshot): nothing without a gas.
-  void remember_gas();
-  void restore_gas();
+  // The state as it is now kept as the last good one (over ranks, each rank
+  // keeps its own slice), and put back (the gas too); the step it was kept at.
+  void keep_good();
+  void restore_good();
+  std::int64_t good_step() const { return stepper_->good_step(); }
   // The gas as named arrays for a checkpoint (empty without a gas), and put
   // back from a checkpoint's (after its state's restore).
   std::vector<std::pair<std::string, std::vector<double>>> gas_saved() const;
@@ -89,6 +94,15 @@ class Simulation {
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
+  // Whether a check can read the ranks' shares instead of rank 0's copy:
+  // over ranks, with nothing else of the particles to read (contact, a gas,
+  // a pressure's nodes).
+  bool checks_on_ranks() const;
+  // A check's figures from rank 0's copy of the whole state (brought back),
+  // and the verdicts from figures, either way (`contact` checked between
+  // the integrity and the speed, as it needs rank 0's copy).
+  StabilityVerdict judge(const CheckFigures& f, Diagnostics* diagnostics_out);
+  void restore_gas();  // as at the last keep_good
 
   CaseSpec spec_;
   PhaseTimers timers_;
@@ -102,7 +116,8 @@ class Simulation {
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
-  double energy_floor_ = 0;  // the balance's round-off scale (energy_balance_floor)
+  double energy_floor_ = 0;       // the balance's round-off scale (energy_balance_floor)
+  bool fields_on_ranks_ = false;  // a check over ranks left rank 0's fields stale
 };
 
 }  // namespace mpsolid

@@ -5,11 +5,13 @@
 // and never asks which; everything that differs between the two lives in
 // their implementations.
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "kernels/model_common.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/timers.hpp"
+#include "src/solver/rank_checks.hpp"
 
 namespace mpsolid {
 
@@ -34,6 +36,22 @@ class Stepper {
   // `state` was changed here (a restore): the next advance gives the ranks
   // (or the threads' parts) their slices of it again.
   virtual void state_changed() = 0;
+  // Whether check_figures gives a check's figures from the ranks' shares
+  // (over MPI ranks), so that a check need not bring the state back.
+  virtual bool checks_on_ranks() const { return false; }
+  // The fields round and what a check reads (src/solver/rank_checks.hpp),
+  // each rank on its own particles; `state` (rank 0's copy) is not brought
+  // up to date.
+  virtual CheckFigures check_figures(SolverState&, PhaseTimers&) {
+    throw std::logic_error("check_figures: no ranks to ask");
+  }
+  // Keeps the state as it is now as the last good one (over ranks, each
+  // rank its own slice), and puts it back into `state` (over ranks, into
+  // every rank's part; rank 0's copy follows at its next read).
+  virtual void keep_good(SolverState& state) = 0;
+  virtual void restore_good(SolverState& state) = 0;
+  // The step of the state keep_good kept (-1: none yet).
+  virtual std::int64_t good_step() const = 0;
   // Each rank's times, halo cost and memory so far, for run.json (empty on
   // one rank).
   virtual std::vector<RankTimes> rank_times() const = 0;

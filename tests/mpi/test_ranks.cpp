@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "kernels/model_registry.hpp"
 #include "src/core/ordered_sum.hpp"
@@ -18,6 +19,7 @@
 #include "src/distributed/ordered_sum_parts.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/rank_checks.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
@@ -128,6 +130,71 @@ void expect_serial_bits(const CaseSpec& spec, std::int64_t steps) {
   // The bodies did move: the comparison is not of a state at rest.
   const std::vector<double>& vx = serial.particles().vx;
   EXPECT_TRUE(std::any_of(vx.begin(), vx.end(), [](double v) { return v != 0.0; }));
+}
+
+// A check's figures from the ranks' shares (src/solver/rank_checks.hpp):
+// the motion sums, the largest speed, the loads' and drivers' work and the
+// first non-finite particle, with the whole state's bits.
+void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
+  const Communicator& world = Communicator::world();
+  Simulation serial(spec);
+  serial.advance(steps);
+  const SolverState& whole = serial.state();
+  Simulation base(spec);
+  RankPart part = make_rank_part(base.spec(), base.state(), world);
+  advance_rank_part(part, world, base.spec().dt, steps);
+  const Decomposition d = decompose_state(base.state(), world.size());
+  const auto figures = [&] {
+    std::vector<double> mine;
+    append_rank_check(part, mine);
+    // Each rank's share after the other: each share reads its own length.
+    const std::vector<double> all = world.all_gather(mine);
+    RankChecks checks;
+    std::size_t at = 0;
+    for (int r = 0; r < world.size(); ++r) checks.read(all, at);
+    EXPECT_EQ(at, all.size());
+    return checks.finish(base.state(), d, {});
+  };
+  const CheckFigures f = figures();
+  const Diagnostics expected = diagnostics_with_strain_energy(whole, 0.0);
+  for (const auto& [name, got, want] :
+       {std::tuple{"kinetic energy", f.diagnostics.kinetic_energy, expected.kinetic_energy},
+        {"momentum x", f.diagnostics.momentum_x, expected.momentum_x},
+        {"momentum y", f.diagnostics.momentum_y, expected.momentum_y},
+        {"momentum z", f.diagnostics.momentum_z, expected.momentum_z},
+        {"angular momentum x", f.diagnostics.angular_momentum_x, expected.angular_momentum_x},
+        {"angular momentum y", f.diagnostics.angular_momentum_y, expected.angular_momentum_y},
+        {"angular momentum", f.diagnostics.angular_momentum, expected.angular_momentum},
+        {"damping loss", f.diagnostics.damping_loss, expected.damping_loss},
+        {"max speed", f.diagnostics.max_speed, expected.max_speed},
+        {"external work", f.diagnostics.external_work, expected.external_work}})
+    EXPECT_TRUE(same_bits(got, want)) << name << ": " << got << " vs " << want;
+  EXPECT_GT(expected.kinetic_energy, 0.0);
+  const Fastest fastest = fastest_moving(whole.particles);
+  EXPECT_EQ(f.fastest.particle, fastest.particle);
+  EXPECT_TRUE(same_bits(f.fastest.speed2, fastest.speed2));
+  EXPECT_TRUE(f.finite.ok);
+  // Two particles gone bad on different ranks: the first in storage order.
+  const std::size_t n = whole.particles.size();
+  for (const std::size_t bad : {n - 2, n / 3 + 1}) {
+    const LocalLayout& layout = part.layout;
+    if (bad >= layout.owned_global.begin && bad < layout.owned_global.end)
+      part.local.particles.vx[layout.owned.begin + (bad - layout.owned_global.begin)] =
+          std::nan("");
+  }
+  const CheckFigures broken = figures();
+  EXPECT_FALSE(broken.finite.ok);
+  EXPECT_EQ(broken.finite.particle, n / 3 + 1);
+}
+
+TEST(Ranks, ACheckFromTheRanksSharesHasTheWholeStatesFigures) {
+  set_thread_count(1);
+  // The rod: walls first (the motion sums start after them), the plate a
+  // rigid body under a force.
+  expect_whole_state_check(testing::rod_case({"l0=0.001"}), 300);
+  // In space: a spinning cube cut across the ranks, every momentum a vector.
+  expect_whole_state_check(
+      load_case(testing::source_path("cases/spinning_cube.toml"), {"l0=0.008"}), 100);
 }
 
 TEST(Ranks, DecomposedStepGivesTheSerialBits) {

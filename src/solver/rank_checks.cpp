@@ -1,0 +1,110 @@
+#include "src/solver/rank_checks.hpp"
+
+#include <stdexcept>
+
+#include "src/core/loads.hpp"
+
+namespace mpsolid {
+
+namespace {
+constexpr double kNone = -1.0;  // no such particle on this rank
+
+void append_list(const std::vector<double>& values, std::vector<double>& out) {
+  out.push_back(static_cast<double>(values.size()));
+  out.insert(out.end(), values.begin(), values.end());
+}
+std::vector<double> read_list(const std::vector<double>& in, std::size_t& at) {
+  if (at >= in.size()) throw std::runtime_error("a rank's check cut short");
+  const auto count = static_cast<std::size_t>(in[at++]);
+  if (at + count > in.size()) throw std::runtime_error("a rank's check cut short");
+  std::vector<double> values(in.begin() + static_cast<long>(at),
+                             in.begin() + static_cast<long>(at + count));
+  at += count;
+  return values;
+}
+}  // namespace
+
+void append_rank_check(const RankPart& part, std::vector<double>& out) {
+  const ParticleStore& p = part.local.particles;
+  const LocalLayout& layout = part.layout;
+  const Range owned = layout.owned;
+  const auto local_of = [&](std::size_t g) {
+    return owned.begin + (g - layout.owned_global.begin);
+  };
+  const auto global_of = [&](std::size_t i) {
+    return static_cast<double>(layout.owned_global.begin + (i - owned.begin));
+  };
+  ordered_sum_part<kMotionSums>(part.moving_begin, part.particles_in_run, layout.owned_global,
+                                [&](std::size_t g) { return motion_terms(p, local_of(g)); })
+      .append_to(out);
+  // The first non-finite particle, as check_finite scans.
+  double bad = kNone;
+  for (std::size_t i = owned.begin; i < owned.end && bad == kNone; ++i)
+    if (!state_is_finite(p, i)) bad = global_of(i);
+  out.push_back(bad);
+  // The first fastest moving particle, as check_speed scans.
+  const Range moving = p.moving();
+  double fastest2 = -1.0, fastest = kNone;
+  for (std::size_t i = std::max(moving.begin, owned.begin); i < std::min(moving.end, owned.end);
+       ++i) {
+    const double s2 = speed_squared(p, i);
+    if (s2 > fastest2) {
+      fastest2 = s2;
+      fastest = global_of(i);
+    }
+  }
+  out.push_back(fastest);
+  out.push_back(fastest2);
+  // Its loads' work and its rigid bodies' drivers' work, in their order.
+  std::vector<double> work;
+  for (const StepLoad& load : part.local.loads) work.push_back(load_work(p, load));
+  append_list(work, out);
+  work.clear();
+  for (const RigidBody& body : part.local.rigid_bodies) work.push_back(body.work);
+  append_list(work, out);
+}
+
+void RankChecks::read(const std::vector<double>& in, std::size_t& at) {
+  motion_.push_back(OrderedSumPart<kMotionSums>::read(in, at));
+  if (at + 3 > in.size()) throw std::runtime_error("a rank's check cut short");
+  const double bad = in[at++];
+  // Ranks are read in storage order: the first found is the first.
+  if (bad != kNone && figures_.finite.ok)
+    figures_.finite = non_finite_verdict(static_cast<std::size_t>(bad));
+  const double fastest = in[at++], fastest2 = in[at++];
+  if (fastest != kNone && fastest2 > figures_.fastest.speed2)
+    figures_.fastest = {static_cast<std::size_t>(fastest), fastest2};
+  load_work_.push_back(read_list(in, at));
+  body_work_.push_back(read_list(in, at));
+}
+
+CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& d,
+                                const RankFields& fields) const {
+  CheckFigures f = figures_;
+  f.diagnostics = motion_from_sums(combine_ordered_sum(motion_), std::max(f.fastest.speed2, 0.0));
+  f.diagnostics.strain_energy = fields.strain_energy;
+  f.integrity = fields.integrity;
+  // Each load or body is its owner's (kept whole on one rank), in the
+  // owner's order: the whole state's sums in its order.
+  const auto owner = [&](Range range) {
+    for (int r = 0; r < d.ranks(); ++r)
+      if (range.begin >= d.owned(r).begin && range.end <= d.owned(r).end) return r;
+    throw std::logic_error("a load or body split between ranks");
+  };
+  std::vector<std::size_t> next(static_cast<std::size_t>(d.ranks()), 0);
+  const auto take = [&](const std::vector<std::vector<double>>& lists, Range range) {
+    const auto r = static_cast<std::size_t>(owner(range));
+    return lists.at(r).at(next[r]++);
+  };
+  double work = 0.0;
+  for (const StepLoad& load : global.loads) {
+    if (load.is_pressure()) throw std::logic_error("a check over ranks with a pressure load");
+    work += take(load_work_, load.range);
+  }
+  std::fill(next.begin(), next.end(), 0);
+  for (const RigidBody& body : global.rigid_bodies) work += take(body_work_, body.range);
+  f.diagnostics.external_work = work;
+  return f;
+}
+
+}  // namespace mpsolid

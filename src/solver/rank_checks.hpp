@@ -1,0 +1,47 @@
+#pragma once
+// A stability check from the MPI ranks' shares (docs/mpi.md): what the check
+// reads of the particles (the motion sums, the largest speed, the first
+// non-finite particle, the loads' and drivers' work) computed by each rank
+// on its own particles and combined on rank 0 with the bits of the whole
+// state's, so that a check moves no rank's slice. Used where the check reads
+// nothing else of the particles: no contact, no gas, no pressure load.
+#include <cstddef>
+#include <vector>
+
+#include "src/core/diagnostics.hpp"
+#include "src/core/stability.hpp"
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/ordered_sum_parts.hpp"
+#include "src/solver/distributed_step.hpp"
+
+namespace mpsolid {
+
+// What a check reads, from the whole state or from the ranks.
+struct CheckFigures {
+  Diagnostics diagnostics;  // the motion's, the strain energy, the external work
+  StabilityVerdict finite;  // ok, or the first non-finite particle
+  Fastest fastest;          // the first fastest moving particle
+  IntegrityReport integrity;
+};
+
+// A rank's share, appended to `out` (its owned particles, in global storage
+// indices; its own loads' and rigid bodies' work in their order).
+void append_rank_check(const RankPart& part, std::vector<double>& out);
+
+// Every rank's share read in rank order, then the figures.
+class RankChecks {
+ public:
+  void read(const std::vector<double>& in, std::size_t& at);
+  // The figures of the whole state `global` (its loads and rigid bodies as
+  // set up: which rank owns which), cut by `d`; the strain energy and the
+  // integrity check come from the fields round.
+  CheckFigures finish(const SolverState& global, const Decomposition& d,
+                      const RankFields& fields) const;
+
+ private:
+  std::vector<OrderedSumPart<kMotionSums>> motion_;
+  std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order
+  CheckFigures figures_;                                    // the first-found and largest
+};
+
+}  // namespace mpsolid
