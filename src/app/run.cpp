@@ -212,7 +212,8 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
     if (step == every.total || step % every.frame == 0) write_frame(d);
     if (step % every.history == 0) {
       auto t = sim.timers().time(Phase::output);
-      outputs.write_history(sim.state(), sim.spec(), d);
+      const Simulation::HistorySource h = sim.history_source();
+      outputs.write_history(h.state, sim.spec(), d, h.readings);
     }
     if (step == every.total) break;
     if (every.checkpoint > 0 && step % every.checkpoint == 0 &&

@@ -61,6 +61,16 @@ inline constexpr std::size_t kMotionSums = 8;
 std::array<double, kMotionSums> motion_terms(const ParticleStore& p, std::size_t i);
 Diagnostics motion_from_sums(const std::array<double, kMotionSums>& sums, double max_speed2);
 
+// What a history row reads of the particles besides the sums: each elastic
+// body's extent (min and max of x, y and, in space, z; in the case's body
+// order), each probe's position and each load's work so far (from the whole
+// state, or from the ranks' shares: src/solver/rank_checks.hpp).
+struct HistoryReadings {
+  std::vector<std::array<double, 6>> extents;
+  std::vector<std::array<double, 3>> probes;
+  std::vector<double> load_work;
+};
+
 // Everything, with the model's strain energy already summed (in the ordered
 // sums' chunk order, on one rank or from the ranks' chunk sums).
 Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_energy);

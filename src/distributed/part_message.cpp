@@ -238,6 +238,8 @@ LocalPart local_part(const SolverState& global, const Decomposition& d, int rank
   part.halo = local_halo(plan, part.layout);
   part.state = local_solver_state(global, part.layout);
   part.moving_begin = global.particles.moving().begin;
+  part.body_ranges = global.body_ranges;
+  part.probes = global.probes;
   return part;
 }
 
@@ -249,6 +251,8 @@ void pack_local_part(const LocalPart& part,
   w.put(part.layout.owned);
   w.put(part.layout.owned_global);
   w.put(static_cast<double>(part.moving_begin));
+  put_items(w, part.body_ranges, [](Writer& o, Range range) { o.put(range); });
+  w.put(part.probes);
   w.put(part.halo.peers);
   put_items(w, part.halo.send, [](Writer& o, const auto& list) { o.put(list); });
   put_items(w, part.halo.receive, [](Writer& o, const auto& list) { o.put(list); });
@@ -288,6 +292,8 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   part.layout.owned = r.get_range();
   part.layout.owned_global = r.get_range();
   part.moving_begin = r.get_as<std::size_t>();
+  part.body_ranges = get_items<Range>(r, [](Reader& in) { return in.get_range(); });
+  part.probes = r.get_vector<std::size_t>();
   part.halo.peers = r.get_vector<int>();
   const auto list = [](Reader& in) { return in.get_vector<std::uint32_t>(); };
   part.halo.send = get_items<std::vector<std::uint32_t>>(r, list);

@@ -22,8 +22,11 @@ struct LocalPart {
   LocalHalo halo;     // in local indices (no buffers)
   SolverState state;  // local_solver_state: no body ranges or probes
   // The run's first moving particle (global storage index): where the
-  // motion sums' chunks start.
+  // motion sums' chunks start. Every body's range and every probe, in
+  // global storage indices: what a history row reads.
   std::size_t moving_begin = 0;
+  std::vector<Range> body_ranges;
+  std::vector<std::size_t> probes;
 };
 
 // The part of `rank` in the set-up state `global`, cut by `d`, with every

@@ -26,6 +26,10 @@ struct StateSlice {
   // into one state at once (threads), only one of them carries them.
   static void read(SolverState& state, Range owned, const std::vector<double>& in, std::size_t& at,
                    bool shared = true);
+  // The same without the particles: the rigid bodies' and loads' fields.
+  static void append_items(const SolverState& state, Range owned, std::vector<double>& out);
+  static void read_items(SolverState& state, Range owned, const std::vector<double>& in,
+                         std::size_t& at);
 };
 
 }  // namespace mpsolid

@@ -59,8 +59,35 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
   return cols;
 }
 
+HistoryReadings history_readings(const SolverState& state, const CaseSpec& spec) {
+  const ParticleStore& p = state.particles;
+  HistoryReadings r;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    if (spec.bodies[b].kind != Kind::elastic) continue;
+    const Range range = state.body_ranges[b];
+    std::array<double, 6> extent{};
+    const std::vector<double>* axes[] = {&p.x, &p.y, &p.z};
+    for (int a = 0; a < (spec.dimension == 3 ? 3 : 2); ++a) {
+      const auto [low, high] =
+          std::minmax_element(axes[a]->begin() + range.begin, axes[a]->begin() + range.end);
+      extent[2 * a] = *low;
+      extent[2 * a + 1] = *high;
+    }
+    r.extents.push_back(extent);
+  }
+  for (const std::size_t i : state.probes)
+    r.probes.push_back({p.x[i], p.y[i], spec.dimension == 3 ? p.z[i] : 0.0});
+  for (const StepLoad& l : state.loads) r.load_work.push_back(load_work(p, l));
+  return r;
+}
+
 std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
                                 const Diagnostics& d) {
+  return history_row(state, spec, d, history_readings(state, spec));
+}
+
+std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
+                                const Diagnostics& d, const HistoryReadings& r) {
   const bool space = spec.dimension == 3;
   std::vector<double> row = {spec.time_at(state.step), d.kinetic_energy, d.strain_energy,
                              d.external_work,          d.momentum_x,     d.momentum_y};
@@ -79,25 +106,15 @@ std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
     }
     if (b.motion.on) row.push_back(b.work);
   }
-  const ParticleStore& p = state.particles;
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-    if (spec.bodies[b].kind != Kind::elastic) continue;
-    const Range r = state.body_ranges[b];
-    const auto [xmin, xmax] = std::minmax_element(p.x.begin() + r.begin, p.x.begin() + r.end);
-    const auto [ymin, ymax] = std::minmax_element(p.y.begin() + r.begin, p.y.begin() + r.end);
-    row.insert(row.end(), {*xmin, *xmax, *ymin, *ymax});
-    if (space) {
-      const auto [zmin, zmax] = std::minmax_element(p.z.begin() + r.begin, p.z.begin() + r.end);
-      row.insert(row.end(), {*zmin, *zmax});
-    }
-  }
-  for (const std::size_t i : state.probes) {
-    row.insert(row.end(), {p.x[i], p.y[i]});
-    if (space) row.push_back(p.z[i]);
-  }
-  for (const StepLoad& l : state.loads)
+  const std::size_t extent_values = space ? 6 : 4;
+  for (const auto& extent : r.extents)
+    row.insert(row.end(), extent.begin(), extent.begin() + static_cast<long>(extent_values));
+  for (const auto& at : r.probes) row.insert(row.end(), at.begin(), at.begin() + (space ? 3 : 2));
+  for (std::size_t k = 0; k < state.loads.size(); ++k) {
+    const StepLoad& l = state.loads[k];
     if (!l.history.constant() || l.is_pressure())
-      row.insert(row.end(), {l.active ? l.factor : 0.0, load_work(p, l)});
+      row.insert(row.end(), {l.active ? l.factor : 0.0, r.load_work[k]});
+  }
   if (spec.gas.enabled) {
     const GasFigures& g = d.gas;
     row.insert(row.end(),
@@ -161,9 +178,10 @@ HistoryWriter::~HistoryWriter() {
   if (file_) std::fclose(file_);
 }
 
-void HistoryWriter::write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d) {
+void HistoryWriter::write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                          const HistoryReadings& readings) {
   std::string line;
-  for (double v : history_row(state, spec, d)) {
+  for (double v : history_row(state, spec, d, readings)) {
     if (!line.empty()) line += ',';
     line += fmt::format("{:.17g}", v);
   }

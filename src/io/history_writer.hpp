@@ -18,6 +18,12 @@ namespace mpsolid {
 std::vector<std::string> history_columns(const SolverState& state, const CaseSpec& spec);
 std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
                                 const Diagnostics& d);
+// The row with the particles' readings given (the state's particles are
+// not read: over ranks they may be elsewhere), and those readings of the
+// whole state.
+std::vector<double> history_row(const SolverState& state, const CaseSpec& spec,
+                                const Diagnostics& d, const HistoryReadings& r);
+HistoryReadings history_readings(const SolverState& state, const CaseSpec& spec);
 
 class HistoryWriter {
  public:
@@ -32,7 +38,8 @@ class HistoryWriter {
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
 
-  void write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
+  void write(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+             const HistoryReadings& readings);
   // Publishes a copy of the file as it is now; writing goes on.
   void publish_copy();
   void publish();

@@ -124,10 +124,10 @@ RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
   write_file_atomically(dir / "case.resolved.toml", spec.resolved_toml);
 }
 
-void RunFolder::write_history(const SolverState& state, const CaseSpec& spec,
-                              const Diagnostics& d) {
+void RunFolder::write_history(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                              const HistoryReadings* readings) {
   if (state.step == last_history_step_) return;
-  history_.write(state, spec, d);
+  history_.write(state, spec, d, readings ? *readings : history_readings(state, spec));
   last_history_step_ = state.step;
 }
 

@@ -41,8 +41,10 @@ class RunFolder {
   RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec,
             const Checkpoint& from);
 
-  // A history.csv row (once per step), and a frame with its row.
-  void write_history(const SolverState& state, const CaseSpec& spec, const Diagnostics& d);
+  // A history.csv row (once per step; the particles' readings given, or
+  // read from `state`), and a frame with its row.
+  void write_history(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                     const HistoryReadings* readings = nullptr);
   void write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
                    const GasFrame& gas = {});
   // Publishes copies of the outputs (unless published), then writes

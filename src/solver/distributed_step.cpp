@@ -64,6 +64,9 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.local = std::move(local.state);
   part.particles_in_run = local.decomposition.starts.back();
   part.moving_begin = local.moving_begin;
+  for (std::size_t b = 0; b < spec.bodies.size() && b < local.body_ranges.size(); ++b)
+    if (spec.bodies[b].kind == Kind::elastic) part.extent_ranges.push_back(local.body_ranges[b]);
+  part.probes = std::move(local.probes);
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);

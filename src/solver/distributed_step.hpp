@@ -42,6 +42,10 @@ struct RankPart {
   RankTimes times;                   // the passes' wall time, summed likewise
   std::size_t particles_in_run = 0;  // over every rank: the ordered sums' range
   std::size_t moving_begin = 0;      // the run's first moving particle (global)
+  // What a history row reads (global storage indices): the elastic bodies'
+  // ranges in the case's order, the probes.
+  std::vector<Range> extent_ranges;
+  std::vector<std::size_t> probes;
   // The owned particles bonded to no ghost (local indices; empty at its
   // end when there are none): their forces read only owned fields.
   Range bonded_to_owned_only;

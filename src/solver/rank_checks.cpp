@@ -1,13 +1,17 @@
 #include "src/solver/rank_checks.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "src/core/loads.hpp"
+#include "src/distributed/state_slice.hpp"
 
 namespace mpsolid {
 
 namespace {
 constexpr double kNone = -1.0;  // no such particle on this rank
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void append_list(const std::vector<double>& values, std::vector<double>& out) {
   out.push_back(static_cast<double>(values.size()));
@@ -62,9 +66,37 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   work.clear();
   for (const RigidBody& body : part.local.rigid_bodies) work.push_back(body.work);
   append_list(work, out);
+  StateSlice::append_items(part.local, owned, out);
+  // Its part of each elastic body's extent (min, max per axis; infinite
+  // where it holds none of the body).
+  const std::vector<double>* axes[] = {&p.x, &p.y, &p.z};
+  const int dimension = p.dimension == 3 ? 3 : 2;
+  for (const Range body : part.extent_ranges) {
+    const std::size_t from = std::max(body.begin, layout.owned_global.begin),
+                      to = std::min(body.end, layout.owned_global.end);
+    for (int a = 0; a < dimension; ++a) {
+      double low = kInfinity, high = -kInfinity;
+      for (std::size_t g = from; g < to; ++g) {
+        low = std::min(low, (*axes[a])[local_of(g)]);
+        high = std::max(high, (*axes[a])[local_of(g)]);
+      }
+      out.insert(out.end(), {low, high});
+    }
+  }
+  // The probes it owns: their number in the case and position.
+  std::vector<double> probes;
+  for (std::size_t k = 0; k < part.probes.size(); ++k) {
+    const std::size_t g = part.probes[k];
+    if (g < layout.owned_global.begin || g >= layout.owned_global.end) continue;
+    const std::size_t i = local_of(g);
+    probes.insert(probes.end(),
+                  {static_cast<double>(k), p.x[i], p.y[i], dimension == 3 ? p.z[i] : 0.0});
+  }
+  append_list(probes, out);
 }
 
-void RankChecks::read(const std::vector<double>& in, std::size_t& at) {
+void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverState& global,
+                      Range owned) {
   motion_.push_back(OrderedSumPart<kMotionSums>::read(in, at));
   if (at + 3 > in.size()) throw std::runtime_error("a rank's check cut short");
   const double bad = in[at++];
@@ -76,11 +108,27 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at) {
     figures_.fastest = {static_cast<std::size_t>(fastest), fastest2};
   load_work_.push_back(read_list(in, at));
   body_work_.push_back(read_list(in, at));
+  StateSlice::read_items(global, owned, in, at);
+  HistoryReadings& r = figures_.readings;
+  const int dimension = global.particles.dimension == 3 ? 3 : 2;
+  for (std::array<double, 6>& extent : r.extents)
+    for (int a = 0; a < dimension; ++a) {
+      if (at + 2 > in.size()) throw std::runtime_error("a rank's check cut short");
+      extent[2 * a] = std::min(extent[2 * a], in[at++]);
+      extent[2 * a + 1] = std::max(extent[2 * a + 1], in[at++]);
+    }
+  r.probes.resize(global.probes.size());
+  const std::vector<double> probes = read_list(in, at);
+  for (std::size_t k = 0; k + 4 <= probes.size(); k += 4)
+    r.probes.at(static_cast<std::size_t>(probes[k])) = {probes[k + 1], probes[k + 2],
+                                                        probes[k + 3]};
 }
 
 CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& d,
                                 const RankFields& fields) const {
   CheckFigures f = figures_;
+  if (global.particles.dimension != 3)  // no z extent in the plane
+    for (std::array<double, 6>& extent : f.readings.extents) extent[4] = extent[5] = 0.0;
   f.diagnostics = motion_from_sums(combine_ordered_sum(motion_), std::max(f.fastest.speed2, 0.0));
   f.diagnostics.strain_energy = fields.strain_energy;
   f.integrity = fields.integrity;
@@ -99,7 +147,8 @@ CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& 
   double work = 0.0;
   for (const StepLoad& load : global.loads) {
     if (load.is_pressure()) throw std::logic_error("a check over ranks with a pressure load");
-    work += take(load_work_, load.range);
+    f.readings.load_work.push_back(take(load_work_, load.range));
+    work += f.readings.load_work.back();
   }
   std::fill(next.begin(), next.end(), 0);
   for (const RigidBody& body : global.rigid_bodies) work += take(body_work_, body.range);

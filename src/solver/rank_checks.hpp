@@ -6,6 +6,7 @@
 // state's, so that a check moves no rank's slice. Used where the check reads
 // nothing else of the particles: no contact, no gas, no pressure load.
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "src/core/diagnostics.hpp"
@@ -22,16 +23,25 @@ struct CheckFigures {
   StabilityVerdict finite;  // ok, or the first non-finite particle
   Fastest fastest;          // the first fastest moving particle
   IntegrityReport integrity;
+  HistoryReadings readings;  // what a history row reads of the particles
 };
 
 // A rank's share, appended to `out` (its owned particles, in global storage
-// indices; its own loads' and rigid bodies' work in their order).
+// indices; its own loads' and rigid bodies' work and fields in their order;
+// its part of the elastic bodies' extents and its probes).
 void append_rank_check(const RankPart& part, std::vector<double>& out);
 
 // Every rank's share read in rank order, then the figures.
 class RankChecks {
  public:
-  void read(const std::vector<double>& in, std::size_t& at);
+  // For a run with `elastic_bodies` elastic bodies (their extents).
+  explicit RankChecks(std::size_t elastic_bodies) {
+    const double inf = std::numeric_limits<double>::infinity();
+    figures_.readings.extents.assign(elastic_bodies, {inf, -inf, inf, -inf, inf, -inf});
+  }
+  // Rank `owned`'s share; its rigid bodies' and loads' fields go into
+  // `global` (rank 0's copy).
+  void read(const std::vector<double>& in, std::size_t& at, SolverState& global, Range owned);
   // The figures of the whole state `global` (its loads and rigid bodies as
   // set up: which rank owns which), cut by `d`; the strain energy and the
   // integrity check come from the fields round.
@@ -41,7 +51,7 @@ class RankChecks {
  private:
   std::vector<OrderedSumPart<kMotionSums>> motion_;
   std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order
-  CheckFigures figures_;                                    // the first-found and largest
+  CheckFigures figures_;  // the first-found and largest, the extents, the probes
 };
 
 }  // namespace mpsolid

@@ -242,7 +242,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (!how.answered()) return out;
   if (how.bring_back) rank_times_.clear();
   std::vector<OrderedSumPart<1>> energy_parts;
-  RankChecks checks;
+  RankChecks checks(p.extent_ranges.size());
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
@@ -254,7 +254,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     }
     if (how.fields)
       read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out, !how.check);
-    if (how.check) checks.read(back, at);
+    if (how.check) checks.read(back, at, global, d.owned(r));
   }
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);

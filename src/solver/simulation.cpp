@@ -93,7 +93,13 @@ const SolverState& Simulation::state_with_fields() {
   return state();
 }
 
+Simulation::HistorySource Simulation::history_source() {
+  if (rank_readings_step_ == state_.step) return {state_, &rank_readings_};
+  return {state(), nullptr};
+}
+
 SolverState& Simulation::state_to_change() {
+  rank_readings_step_ = -1;
   stepper_->bring_to_rank_zero(state_);
   stepper_->state_changed();
   return state_;
@@ -136,6 +142,7 @@ void Simulation::keep_good() {
 }
 
 void Simulation::restore_good() {
+  rank_readings_step_ = -1;
   stepper_->restore_good(state_);
   restore_gas();
 }
@@ -172,7 +179,10 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
   }
   if (checks_on_ranks()) {
     fields_on_ranks_ = true;
-    return judge(stepper_->check_figures(state_, timers_), diagnostics_out);
+    CheckFigures f = stepper_->check_figures(state_, timers_);
+    rank_readings_ = std::move(f.readings);
+    rank_readings_step_ = state_.step;
+    return judge(f, diagnostics_out);
   }
   CheckFigures f;
   const ParticleStore& p = state().particles;

@@ -63,6 +63,15 @@ class Simulation {
   // for a frame: after a check over ranks, which leaves them on the ranks,
   // the fields round runs again.
   const SolverState& state_with_fields();
+  // What a history row at this step reads: after a check over ranks at this
+  // step, rank 0's copy (its bodies' and loads' fields from the ranks) with
+  // the readings of the ranks' shares, so that no slice moves; otherwise the
+  // whole state (brought back) and no readings (they are read from it).
+  struct HistorySource {
+    const SolverState& state;
+    const HistoryReadings* readings;
+  };
+  HistorySource history_source();
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
@@ -116,8 +125,10 @@ class Simulation {
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
-  double energy_floor_ = 0;       // the balance's round-off scale (energy_balance_floor)
-  bool fields_on_ranks_ = false;  // a check over ranks left rank 0's fields stale
+  double energy_floor_ = 0;               // the balance's round-off scale (energy_balance_floor)
+  bool fields_on_ranks_ = false;          // a check over ranks left rank 0's fields stale
+  HistoryReadings rank_readings_;         // of the last check over ranks
+  std::int64_t rank_readings_step_ = -1;  // its step
 };
 
 }  // namespace mpsolid

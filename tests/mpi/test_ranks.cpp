@@ -17,6 +17,7 @@
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/local_state.hpp"
 #include "src/distributed/ordered_sum_parts.hpp"
+#include "src/io/history_writer.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/rank_checks.hpp"
@@ -149,9 +150,10 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
     append_rank_check(part, mine);
     // Each rank's share after the other: each share reads its own length.
     const std::vector<double> all = world.all_gather(mine);
-    RankChecks checks;
+    RankChecks checks(part.extent_ranges.size());
     std::size_t at = 0;
-    for (int r = 0; r < world.size(); ++r) checks.read(all, at);
+    SolverState copy = base.state();
+    for (int r = 0; r < world.size(); ++r) checks.read(all, at, copy, d.owned(r));
     EXPECT_EQ(at, all.size());
     return checks.finish(base.state(), d, {});
   };
@@ -170,6 +172,17 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
         {"external work", f.diagnostics.external_work, expected.external_work}})
     EXPECT_TRUE(same_bits(got, want)) << name << ": " << got << " vs " << want;
   EXPECT_GT(expected.kinetic_energy, 0.0);
+  // What a history row reads: the elastic bodies' extents, the probes, the
+  // loads' work.
+  const HistoryReadings readings = history_readings(whole, serial.spec());
+  const auto same_values = [](const auto& a, const auto& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof a[0] * a.size()) == 0;
+  };
+  ASSERT_FALSE(readings.extents.empty());
+  EXPECT_TRUE(same_values(f.readings.extents, readings.extents));
+  EXPECT_TRUE(same_values(f.readings.probes, readings.probes));
+  EXPECT_EQ(readings.probes.size(), whole.probes.size());
+  EXPECT_TRUE(same_values(f.readings.load_work, readings.load_work));
   const Fastest fastest = fastest_moving(whole.particles);
   EXPECT_EQ(f.fastest.particle, fastest.particle);
   EXPECT_TRUE(same_bits(f.fastest.speed2, fastest.speed2));
@@ -190,8 +203,11 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
 TEST(Ranks, ACheckFromTheRanksSharesHasTheWholeStatesFigures) {
   set_thread_count(1);
   // The rod: walls first (the motion sums start after them), the plate a
-  // rigid body under a force.
-  expect_whole_state_check(testing::rod_case({"l0=0.001"}), 300);
+  // rigid body under a force, probes in the rod's first and last rows (on
+  // different ranks).
+  expect_whole_state_check(testing::rod_case({"l0=0.001", "probes.near.at=[0.001, -0.019]",
+                                              "probes.far.at=[0.099, 0.019]"}),
+                           300);
   // In space: a spinning cube cut across the ranks, every momentum a vector.
   expect_whole_state_check(
       load_case(testing::source_path("cases/spinning_cube.toml"), {"l0=0.008"}), 100);
