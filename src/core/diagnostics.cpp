@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "src/core/ordered_sum.hpp"
 
@@ -58,6 +59,34 @@ Diagnostics motion_diagnostics(const ParticleStore& p) {
   double vmax2 = 0.0;
   for (std::size_t i = r.begin; i < r.end; ++i) vmax2 = std::max(vmax2, speed_squared(p, i));
   return motion_from_sums(sums, vmax2);
+}
+
+std::array<double, 6> extent_of(const ParticleStore& p, Range range) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 6> extent{inf, -inf, inf, -inf, 0.0, 0.0};
+  const std::vector<double>* axes[] = {&p.x, &p.y, &p.z};
+  for (int a = 0; a < (p.dimension == 3 ? 3 : 2); ++a) {
+    double low = inf, high = -inf;
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      const double v = (*axes[a])[i];
+      if (v < low) low = v;
+      if (!(v < high)) high = v;
+    }
+    extent[2 * a] = low;
+    extent[2 * a + 1] = high;
+  }
+  return extent;
+}
+
+void widen(std::array<double, 6>& extent, const std::array<double, 6>& later) {
+  for (int a = 0; a < 3; ++a) {
+    if (later[2 * a] < extent[2 * a]) extent[2 * a] = later[2 * a];
+    if (!(later[2 * a + 1] < extent[2 * a + 1])) extent[2 * a + 1] = later[2 * a + 1];
+  }
+}
+
+std::array<double, 3> position_of(const ParticleStore& p, std::size_t i) {
+  return {p.x[i], p.y[i], p.dimension == 3 ? p.z[i] : 0.0};
 }
 
 Diagnostics diagnostics_with_strain_energy(const SolverState& s, double strain_energy) {

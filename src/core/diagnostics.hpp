@@ -70,6 +70,14 @@ struct HistoryReadings {
   std::vector<std::array<double, 3>> probes;
   std::vector<double> load_work;
 };
+// The extent of the particles of `range`: min and max of x, y and, in
+// space, z (+inf, -inf where `range` is empty; z 0 in the plane), the first
+// smallest and the last largest as std::minmax_element finds them; and a
+// later part's extent (in storage order) added to it, as if scanned after.
+std::array<double, 6> extent_of(const ParticleStore& p, Range range);
+void widen(std::array<double, 6>& extent, const std::array<double, 6>& later);
+// A particle's position (z 0 in the plane).
+std::array<double, 3> position_of(const ParticleStore& p, std::size_t i);
 
 // Everything, with the model's strain energy already summed (in the ordered
 // sums' chunk order, on one rank or from the ranks' chunk sums).

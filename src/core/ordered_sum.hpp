@@ -14,6 +14,17 @@ namespace mpsolid {
 
 inline constexpr std::size_t kSumChunk = 512;
 
+// term(i) summed over [begin, end) in order from zero: one chunk's sum.
+template <std::size_t N, class Term>
+std::array<double, N> sum_in_order(std::size_t begin, std::size_t end, Term&& term) {
+  std::array<double, N> s{};
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::array<double, N> t = term(i);
+    for (std::size_t k = 0; k < N; ++k) s[k] += t[k];
+  }
+  return s;
+}
+
 // Sums term(i) (an std::array<double, N>) over [begin, end).
 template <std::size_t N, class Term>
 std::array<double, N> ordered_sum(std::size_t begin, std::size_t end, Term&& term) {
@@ -22,14 +33,9 @@ std::array<double, N> ordered_sum(std::size_t begin, std::size_t end, Term&& ter
   const std::size_t chunks = (end - begin + kSumChunk - 1) / kSumChunk;
   std::vector<std::array<double, N>> partial(chunks);
   auto sum_chunk = [&](std::size_t c) {
-    std::array<double, N> s{};
     const std::size_t b = begin + c * kSumChunk;
     const std::size_t e = b + kSumChunk < end ? b + kSumChunk : end;
-    for (std::size_t i = b; i < e; ++i) {
-      const std::array<double, N> t = term(i);
-      for (std::size_t k = 0; k < N; ++k) s[k] += t[k];
-    }
-    partial[c] = s;
+    partial[c] = sum_in_order<N>(b, e, term);
   };
   if (in_team())
     for (std::size_t c = 0; c < chunks; ++c) sum_chunk(c);

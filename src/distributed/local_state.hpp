@@ -23,6 +23,11 @@ struct LocalLayout {
   Range owned_global;                    // ... and their global storage range
 
   std::size_t size() const { return global_of.size(); }
+  // The local index of an owned particle's global storage index (owned
+  // particles are contiguous in both: a shift).
+  std::size_t local_of_owned(std::size_t global) const {
+    return owned.begin + (global - owned_global.begin);
+  }
   // The local index of a global storage index this rank holds.
   std::size_t local_of(std::uint32_t global) const;
 };

@@ -73,12 +73,7 @@ OrderedSumPart<N> ordered_sum_part(std::size_t begin, std::size_t end, Range hel
     piece.chunk = chunk;
     piece.whole = b == chunk_begin && e == chunk_end;
     if (piece.whole) {
-      std::array<double, N> s{};
-      for (std::size_t i = b; i < e; ++i) {
-        const std::array<double, N> t = term(i);
-        for (std::size_t k = 0; k < N; ++k) s[k] += t[k];
-      }
-      piece.values.push_back(s);
+      piece.values.push_back(sum_in_order<N>(b, e, term));
     } else {
       for (std::size_t i = b; i < e; ++i) piece.values.push_back(term(i));
     }

@@ -82,19 +82,19 @@ void StateSlice::append(const SolverState& state, Range owned, std::vector<doubl
     out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
                v.begin() + static_cast<long>(owned.end));
   }
+  append_items(state, owned, out, shared);
+}
+
+void StateSlice::append_items(const SolverState& state, Range owned, std::vector<double>& out,
+                              bool shared) {
   mpsolid::append_items(state.rigid_bodies, owned, shared, out);
   mpsolid::append_items(state.loads, owned, shared, out);
 }
 
-void StateSlice::append_items(const SolverState& state, Range owned, std::vector<double>& out) {
-  mpsolid::append_items(state.rigid_bodies, owned, true, out);
-  mpsolid::append_items(state.loads, owned, true, out);
-}
-
 void StateSlice::read_items(SolverState& state, Range owned, const std::vector<double>& in,
-                            std::size_t& at) {
-  mpsolid::read_items(state.rigid_bodies, owned, true, in, at);
-  mpsolid::read_items(state.loads, owned, true, in, at);
+                            std::size_t& at, bool shared) {
+  mpsolid::read_items(state.rigid_bodies, owned, shared, in, at);
+  mpsolid::read_items(state.loads, owned, shared, in, at);
 }
 
 void StateSlice::read(SolverState& state, Range owned, const std::vector<double>& in,
@@ -105,8 +105,7 @@ void StateSlice::read(SolverState& state, Range owned, const std::vector<double>
                 v.begin() + static_cast<long>(owned.begin));
     at += owned.size();
   }
-  mpsolid::read_items(state.rigid_bodies, owned, shared, in, at);
-  mpsolid::read_items(state.loads, owned, shared, in, at);
+  read_items(state, owned, in, at, shared);
 }
 
 }  // namespace mpsolid

@@ -27,9 +27,10 @@ struct StateSlice {
   static void read(SolverState& state, Range owned, const std::vector<double>& in, std::size_t& at,
                    bool shared = true);
   // The same without the particles: the rigid bodies' and loads' fields.
-  static void append_items(const SolverState& state, Range owned, std::vector<double>& out);
+  static void append_items(const SolverState& state, Range owned, std::vector<double>& out,
+                           bool shared = true);
   static void read_items(SolverState& state, Range owned, const std::vector<double>& in,
-                         std::size_t& at);
+                         std::size_t& at, bool shared = true);
 };
 
 }  // namespace mpsolid

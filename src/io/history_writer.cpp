@@ -62,21 +62,10 @@ std::vector<std::string> history_columns(const SolverState& state, const CaseSpe
 HistoryReadings history_readings(const SolverState& state, const CaseSpec& spec) {
   const ParticleStore& p = state.particles;
   HistoryReadings r;
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-    if (spec.bodies[b].kind != Kind::elastic) continue;
-    const Range range = state.body_ranges[b];
-    std::array<double, 6> extent{};
-    const std::vector<double>* axes[] = {&p.x, &p.y, &p.z};
-    for (int a = 0; a < (spec.dimension == 3 ? 3 : 2); ++a) {
-      const auto [low, high] =
-          std::minmax_element(axes[a]->begin() + range.begin, axes[a]->begin() + range.end);
-      extent[2 * a] = *low;
-      extent[2 * a + 1] = *high;
-    }
-    r.extents.push_back(extent);
-  }
-  for (const std::size_t i : state.probes)
-    r.probes.push_back({p.x[i], p.y[i], spec.dimension == 3 ? p.z[i] : 0.0});
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].kind == Kind::elastic)
+      r.extents.push_back(extent_of(p, state.body_ranges[b]));
+  for (const std::size_t i : state.probes) r.probes.push_back(position_of(p, i));
   for (const StepLoad& l : state.loads) r.load_work.push_back(load_work(p, l));
   return r;
 }

@@ -108,8 +108,8 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
         // The owned range's share of the serial chunks (a cut may fall
         // inside one).
         ordered_sum_part<1>(0, part.particles_in_run, layout.owned_global, [&](std::size_t g) {
-          const std::size_t i = owned.begin + (g - layout.owned_global.begin);
-          return std::array<double, 1>{model.particle_strain_energy(p, s.bonds, i)};
+          return std::array<double, 1>{
+              model.particle_strain_energy(p, s.bonds, layout.local_of_owned(g))};
         }).append_to(out);
         const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
         out.push_back(r.value);
@@ -125,12 +125,12 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
 void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
                       ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
                       RankFields& fields, bool arrays) {
-  for (std::vector<double>* field : {&global.strain, &global.pressure}) {
-    if (!arrays) break;
-    std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
-                field->begin() + static_cast<long>(owned.begin));
-    at += owned.size();
-  }
+  if (arrays)
+    for (std::vector<double>* field : {&global.strain, &global.pressure}) {
+      std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
+                  field->begin() + static_cast<long>(owned.begin));
+      at += owned.size();
+    }
   energy_parts.push_back(OrderedSumPart<1>::read(in, at));
   IntegrityReport r;
   r.value = in[at++];

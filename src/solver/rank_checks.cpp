@@ -1,7 +1,6 @@
 #include "src/solver/rank_checks.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <stdexcept>
 
 #include "src/core/loads.hpp"
@@ -11,7 +10,6 @@ namespace mpsolid {
 
 namespace {
 constexpr double kNone = -1.0;  // no such particle on this rank
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void append_list(const std::vector<double>& values, std::vector<double>& out) {
   out.push_back(static_cast<double>(values.size()));
@@ -32,19 +30,15 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   const ParticleStore& p = part.local.particles;
   const LocalLayout& layout = part.layout;
   const Range owned = layout.owned;
-  const auto local_of = [&](std::size_t g) {
-    return owned.begin + (g - layout.owned_global.begin);
-  };
-  const auto global_of = [&](std::size_t i) {
-    return static_cast<double>(layout.owned_global.begin + (i - owned.begin));
-  };
-  ordered_sum_part<kMotionSums>(part.moving_begin, part.particles_in_run, layout.owned_global,
-                                [&](std::size_t g) { return motion_terms(p, local_of(g)); })
+  const auto global_index = [&](std::size_t i) { return static_cast<double>(layout.global_of[i]); };
+  ordered_sum_part<kMotionSums>(
+      part.moving_begin, part.particles_in_run, layout.owned_global,
+      [&](std::size_t g) { return motion_terms(p, layout.local_of_owned(g)); })
       .append_to(out);
   // The first non-finite particle, as check_finite scans.
   double bad = kNone;
   for (std::size_t i = owned.begin; i < owned.end && bad == kNone; ++i)
-    if (!state_is_finite(p, i)) bad = global_of(i);
+    if (!state_is_finite(p, i)) bad = global_index(i);
   out.push_back(bad);
   // The first fastest moving particle, as check_speed scans.
   const Range moving = p.moving();
@@ -54,12 +48,13 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
     const double s2 = speed_squared(p, i);
     if (s2 > fastest2) {
       fastest2 = s2;
-      fastest = global_of(i);
+      fastest = global_index(i);
     }
   }
   out.push_back(fastest);
   out.push_back(fastest2);
-  // Its loads' work and its rigid bodies' drivers' work, in their order.
+  // Its loads' work and its rigid bodies' drivers' work, in their order,
+  // then their fields.
   std::vector<double> work;
   for (const StepLoad& load : part.local.loads) work.push_back(load_work(p, load));
   append_list(work, out);
@@ -67,30 +62,23 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   for (const RigidBody& body : part.local.rigid_bodies) work.push_back(body.work);
   append_list(work, out);
   StateSlice::append_items(part.local, owned, out);
-  // Its part of each elastic body's extent (min, max per axis; infinite
-  // where it holds none of the body).
-  const std::vector<double>* axes[] = {&p.x, &p.y, &p.z};
-  const int dimension = p.dimension == 3 ? 3 : 2;
+  // Its part of each elastic body's extent.
   for (const Range body : part.extent_ranges) {
-    const std::size_t from = std::max(body.begin, layout.owned_global.begin),
-                      to = std::min(body.end, layout.owned_global.end);
-    for (int a = 0; a < dimension; ++a) {
-      double low = kInfinity, high = -kInfinity;
-      for (std::size_t g = from; g < to; ++g) {
-        low = std::min(low, (*axes[a])[local_of(g)]);
-        high = std::max(high, (*axes[a])[local_of(g)]);
-      }
-      out.insert(out.end(), {low, high});
-    }
+    const Range mine{std::max(body.begin, layout.owned_global.begin),
+                     std::min(body.end, layout.owned_global.end)};
+    const std::array<double, 6> extent =
+        mine.begin < mine.end
+            ? extent_of(p, {layout.local_of_owned(mine.begin), layout.local_of_owned(mine.end)})
+            : extent_of(p, {});
+    out.insert(out.end(), extent.begin(), extent.end());
   }
   // The probes it owns: their number in the case and position.
   std::vector<double> probes;
   for (std::size_t k = 0; k < part.probes.size(); ++k) {
     const std::size_t g = part.probes[k];
     if (g < layout.owned_global.begin || g >= layout.owned_global.end) continue;
-    const std::size_t i = local_of(g);
-    probes.insert(probes.end(),
-                  {static_cast<double>(k), p.x[i], p.y[i], dimension == 3 ? p.z[i] : 0.0});
+    const std::array<double, 3> at = position_of(p, layout.local_of_owned(g));
+    probes.insert(probes.end(), {static_cast<double>(k), at[0], at[1], at[2]});
   }
   append_list(probes, out);
 }
@@ -109,39 +97,35 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverStat
   load_work_.push_back(read_list(in, at));
   body_work_.push_back(read_list(in, at));
   StateSlice::read_items(global, owned, in, at);
-  HistoryReadings& r = figures_.readings;
-  const int dimension = global.particles.dimension == 3 ? 3 : 2;
-  for (std::array<double, 6>& extent : r.extents)
-    for (int a = 0; a < dimension; ++a) {
-      if (at + 2 > in.size()) throw std::runtime_error("a rank's check cut short");
-      extent[2 * a] = std::min(extent[2 * a], in[at++]);
-      extent[2 * a + 1] = std::max(extent[2 * a + 1], in[at++]);
-    }
-  r.probes.resize(global.probes.size());
+  std::vector<std::array<double, 6>>& extents = figures_.readings.extents;
+  for (std::size_t b = 0; b < elastic_bodies_; ++b) {
+    if (at + 6 > in.size()) throw std::runtime_error("a rank's check cut short");
+    std::array<double, 6> part;
+    std::copy_n(in.begin() + static_cast<long>(at), 6, part.begin());
+    at += 6;
+    if (extents.size() < elastic_bodies_)  // the first rank's
+      extents.push_back(part);
+    else
+      widen(extents[b], part);
+  }
+  figures_.readings.probes.resize(global.probes.size());
   const std::vector<double> probes = read_list(in, at);
   for (std::size_t k = 0; k + 4 <= probes.size(); k += 4)
-    r.probes.at(static_cast<std::size_t>(probes[k])) = {probes[k + 1], probes[k + 2],
-                                                        probes[k + 3]};
+    figures_.readings.probes.at(static_cast<std::size_t>(probes[k])) = {
+        probes[k + 1], probes[k + 2], probes[k + 3]};
 }
 
 CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& d,
                                 const RankFields& fields) const {
   CheckFigures f = figures_;
-  if (global.particles.dimension != 3)  // no z extent in the plane
-    for (std::array<double, 6>& extent : f.readings.extents) extent[4] = extent[5] = 0.0;
   f.diagnostics = motion_from_sums(combine_ordered_sum(motion_), std::max(f.fastest.speed2, 0.0));
   f.diagnostics.strain_energy = fields.strain_energy;
   f.integrity = fields.integrity;
   // Each load or body is its owner's (kept whole on one rank), in the
   // owner's order: the whole state's sums in its order.
-  const auto owner = [&](Range range) {
-    for (int r = 0; r < d.ranks(); ++r)
-      if (range.begin >= d.owned(r).begin && range.end <= d.owned(r).end) return r;
-    throw std::logic_error("a load or body split between ranks");
-  };
   std::vector<std::size_t> next(static_cast<std::size_t>(d.ranks()), 0);
   const auto take = [&](const std::vector<std::vector<double>>& lists, Range range) {
-    const auto r = static_cast<std::size_t>(owner(range));
+    const auto r = static_cast<std::size_t>(d.owner_of(range.begin));
     return lists.at(r).at(next[r]++);
   };
   double work = 0.0;

@@ -6,7 +6,6 @@
 // state's, so that a check moves no rank's slice. Used where the check reads
 // nothing else of the particles: no contact, no gas, no pressure load.
 #include <cstddef>
-#include <limits>
 #include <vector>
 
 #include "src/core/diagnostics.hpp"
@@ -35,10 +34,7 @@ void append_rank_check(const RankPart& part, std::vector<double>& out);
 class RankChecks {
  public:
   // For a run with `elastic_bodies` elastic bodies (their extents).
-  explicit RankChecks(std::size_t elastic_bodies) {
-    const double inf = std::numeric_limits<double>::infinity();
-    figures_.readings.extents.assign(elastic_bodies, {inf, -inf, inf, -inf, inf, -inf});
-  }
+  explicit RankChecks(std::size_t elastic_bodies) : elastic_bodies_(elastic_bodies) {}
   // Rank `owned`'s share; its rigid bodies' and loads' fields go into
   // `global` (rank 0's copy).
   void read(const std::vector<double>& in, std::size_t& at, SolverState& global, Range owned);
@@ -51,6 +47,7 @@ class RankChecks {
  private:
   std::vector<OrderedSumPart<kMotionSums>> motion_;
   std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order
+  std::size_t elastic_bodies_;
   CheckFigures figures_;  // the first-found and largest, the extents, the probes
 };
 
