@@ -93,8 +93,17 @@ Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_
           {"last_good_time", sim.spec().time_at(last_good_step)}};
 }
 
-RunReportInputs report_inputs(Simulation& sim) {
-  return {sim.spec(), sim.state(), sim.timers(), sim.stable_step(), sim.gas_saved()};
+// What run.json and a checkpoint read (over MPI ranks, rank 0's copy with
+// its bodies, loads and step current: Simulation::checkpoint_source).
+RunReportInputs report_inputs(Simulation& sim, const SolverState& state) {
+  return {sim.spec(), state, sim.timers(), sim.stable_step(), sim.gas_saved()};
+}
+
+// A checkpoint of the current state, over MPI ranks each rank writing its
+// own particles.
+void write_checkpoint(Simulation& sim, RunFolder& outputs, const RunFacts& facts) {
+  const Simulation::CheckpointSource source = sim.checkpoint_source();
+  outputs.checkpoint(report_inputs(sim, source.state), facts, source.placer);
 }
 
 void print_summary(Simulation& sim, const RunFacts& facts, const RunOptions& options) {
@@ -104,8 +113,8 @@ void print_summary(Simulation& sim, const RunFacts& facts, const RunOptions& opt
              sim.spec().name, sim.spec().model, outcome_name(facts.outcome), facts.steps,
              sim.time(), facts.wall_seconds, facts.threads);
   fmt::print("  {} particles, {} bonds; {:.4g} steps/s, {:.4g} particle-steps/s\n",
-             sim.particles().size(), sim.state().bonds.entry_count() / 2, rate,
-             rate * static_cast<double>(sim.particles().size()));
+             sim.particle_count(), sim.bond_count(), rate,
+             rate * static_cast<double>(sim.particle_count()));
   if (const StableStepEstimate& e = sim.stable_step(); e.iterations > 0)
     fmt::print(
         "  dt = {:.6g} s (auto: safety {} x limit {:.6g} s, omega_max {:.6g} rad/s, {} power "
@@ -162,16 +171,23 @@ struct Cadences {
 void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunOptions& options,
                  bool fresh) {
   const Cadences every(sim.spec(), sim.particle_count());
-  // The current state as a frame (its fields must be fresh).
+  // The current state as a frame (its fields must be fresh); over MPI ranks
+  // each rank writes its own particles' rows (compressed frames excepted:
+  // rank 0 compresses them).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    outputs.write_frame(sim.state_with_fields(), sim.spec(), d, sim.gas_frame());
+    if (const RowPlacer placer = sim.row_placer(); placer && sim.spec().compression == 0) {
+      const Simulation::HistorySource h = sim.history_source();
+      outputs.write_placed_frame(h.state, sim.spec(), d, h.readings, sim.gas_frame(), placer);
+    } else {
+      outputs.write_frame(sim.state_with_fields(), sim.spec(), d, sim.gas_frame());
+    }
   };
   // A checkpoint mid-run records the segment as "interrupted".
   auto checkpoint = [&] {
     RunFacts now = facts;
     now.outcome = Outcome::interrupted;
-    outputs.checkpoint(report_inputs(sim), now);
+    write_checkpoint(sim, outputs, now);
   };
 
   Progress progress(every.total, sim.spec().dt, options.progress, facts.threads);
@@ -246,11 +262,12 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
     auto t = sim.timers().time(Phase::output);
     outputs.publish();
   }
-  if (facts.outcome != Outcome::unstable) outputs.checkpoint(report_inputs(sim), facts);
+  if (facts.outcome != Outcome::unstable) write_checkpoint(sim, outputs, facts);
   outputs.fill(facts);
   facts.wall_seconds = seconds_since_start();
   write_file_atomically(options.out_dir / "run.json",
-                        run_report_json(report_inputs(sim), facts, outputs.previous_segments()));
+                        run_report_json(report_inputs(sim, sim.checkpoint_source().state), facts,
+                                        outputs.previous_segments()));
   print_summary(sim, facts, options);
 }
 

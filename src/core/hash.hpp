@@ -1,7 +1,10 @@
 #pragma once
 // FNV-1a, 64 bit: the one hash of the project (bond tables, checkpoint
-// contents). Not cryptographic; it finds damaged bytes and mismatched inputs.
+// contents); and the hash of an array whose terms add (placed_array_hash),
+// for arrays that ranks write in parts. Not cryptographic; they find damaged
+// bytes and mismatched inputs.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -31,5 +34,28 @@ class Fnv1a {
  private:
   std::uint64_t h_ = 1469598103934665603ull;
 };
+
+// One value's term of an array's hash: its bits mixed with its position
+// (splitmix64's finaliser). An array's hash is the sum of its terms modulo
+// 2^64, so any split of the positions between ranks, summed in any order,
+// gives the same hash; a changed or moved value changes it but for a chance
+// of 2^-64.
+inline std::uint64_t mix64(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+inline std::uint64_t placed_term(std::uint64_t position, double value) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  return mix64(bits ^ mix64(position));
+}
+// The hash of a whole array, value k at position k.
+inline std::uint64_t placed_array_hash(const std::vector<double>& values) {
+  std::uint64_t sum = 0;
+  for (std::size_t k = 0; k < values.size(); ++k) sum += placed_term(k, values[k]);
+  return sum;
+}
 
 }  // namespace mpsolid

@@ -238,12 +238,10 @@ std::vector<std::uint32_t> select_segments(const Surface& surface,
   return chosen;
 }
 
-void site_area_vectors(const Surface& s, const double* x, const double* y, std::size_t first,
-                       std::vector<double>& ax, std::vector<double>& ay) {
+void site_area_vectors_of_nodes(const Surface& s, const std::vector<Point2>& at,
+                                std::vector<double>& ax, std::vector<double>& ay) {
   std::fill(ax.begin(), ax.end(), 0.0);
   std::fill(ay.begin(), ay.end(), 0.0);
-  std::vector<Point2> at(s.nodes());
-  for (std::size_t k = 0; k < s.nodes(); ++k) at[k] = node_position(s, k, x, y, first);
   for (std::size_t k = 0; k < s.nodes(); ++k) {
     const std::size_t n = s.next[k];
     // Half of R(x_n - x_k), R the clockwise quarter turn, to each end.
@@ -253,6 +251,13 @@ void site_area_vectors(const Surface& s, const double* x, const double* y, std::
     ax[s.host[n]] += hx;
     ay[s.host[n]] += hy;
   }
+}
+
+void site_area_vectors(const Surface& s, const double* x, const double* y, std::size_t first,
+                       std::vector<double>& ax, std::vector<double>& ay) {
+  std::vector<Point2> at(s.nodes());
+  for (std::size_t k = 0; k < s.nodes(); ++k) at[k] = node_position(s, k, x, y, first);
+  site_area_vectors_of_nodes(s, at, ax, ay);
 }
 
 }  // namespace mpsolid

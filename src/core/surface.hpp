@@ -95,5 +95,8 @@ inline Point2 node_position(const Surface& s, std::size_t k, const double* x, co
 // hosts no node. `ax`, `ay` are indexed by site.
 void site_area_vectors(const Surface& s, const double* x, const double* y, std::size_t first,
                        std::vector<double>& ax, std::vector<double>& ay);
+// The same from the nodes' positions `at` (every node of the surface).
+void site_area_vectors_of_nodes(const Surface& s, const std::vector<Point2>& at,
+                                std::vector<double>& ax, std::vector<double>& ay);
 
 }  // namespace mpsolid

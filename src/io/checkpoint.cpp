@@ -15,14 +15,19 @@ namespace mpsolid {
 
 namespace {
 constexpr const char* kFormat = "mpsolid checkpoint";
-constexpr std::int64_t kFormatVersion =
-    3;  // 2: peak_work; 3: bond hash of topology and geometry only
+// 2: peak_work; 3: bond hash of topology and geometry only; 4: each particle
+// array in the content hash through its placed_array_hash (ranks write their
+// own rows), the rest as in 3, which is still read.
+constexpr std::int64_t kFormatVersion = 4;
+constexpr std::int64_t kOldestRead = 3;
 
 // Everything stored goes into the content hash: a damaged byte anywhere is
-// found on reading.
-std::uint64_t content_hash(const Checkpoint& c) {
+// found on reading. The particle arrays go in by their hashes (`arrays`, in
+// their order); version 3 hashed their bytes.
+std::uint64_t content_hash(const Checkpoint& c, std::int64_t version,
+                           const std::vector<std::uint64_t>& arrays) {
   Fnv1a h;
-  h.value(kFormatVersion);
+  h.value(version);
   h.value(c.step);
   h.value(c.peak_work);
   h.text(c.case_toml);
@@ -32,9 +37,13 @@ std::uint64_t content_hash(const Checkpoint& c) {
   h.value(c.history_bytes);
   h.text(c.written_by);
   for (const auto& s : c.segments) h.text(s);
-  for (const auto& [name, values] : c.particle_arrays) {
+  for (std::size_t a = 0; a < c.particle_arrays.size(); ++a) {
+    const auto& [name, values] = c.particle_arrays[a];
     h.text(name);
-    h.bytes(values.data(), values.size() * sizeof(double));
+    if (version == 3)
+      h.bytes(values.data(), values.size() * sizeof(double));
+    else
+      h.value(arrays.at(a));
   }
   for (const auto& b : c.rigid_bodies) {
     h.text(b.name);
@@ -61,6 +70,13 @@ std::uint64_t content_hash(const Checkpoint& c) {
   return h.value();
 }
 
+// Each particle array's placed_array_hash.
+std::vector<std::uint64_t> array_hashes(const Checkpoint& c) {
+  std::vector<std::uint64_t> out;
+  for (const auto& [name, values] : c.particle_arrays) out.push_back(placed_array_hash(values));
+  return out;
+}
+
 std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
   std::vector<std::string> names;
   for (const auto& a : arrays) names.push_back(a.name);
@@ -74,16 +90,18 @@ std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
   return arrays;
 }
 
-Checkpoint capture_state(const SolverState& state) {
+Checkpoint capture_state(const SolverState& state, bool particle_values) {
   Checkpoint c;
   c.step = state.step;
   c.peak_work = state.peak_work;
   const ParticleStore& p = state.particles;
-  const std::vector<std::size_t> order = p.storage_of_id();
+  c.particle_count = static_cast<std::int64_t>(p.size());
+  const std::vector<std::size_t> order =
+      particle_values ? p.storage_of_id() : std::vector<std::size_t>{};
   for (const StateArray& a : state_arrays(p.dimension)) {
     const std::vector<double>& values = p.*a.member;
-    std::vector<double> by_id(p.size());
-    for (std::size_t k = 0; k < p.size(); ++k) by_id[k] = values[order[k]];
+    std::vector<double> by_id(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) by_id[k] = values[order[k]];
     c.particle_arrays.emplace_back(a.name, std::move(by_id));
   }
   for (const RigidBody& b : state.rigid_bodies)
@@ -176,7 +194,8 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
   s.peak_work = c.peak_work;
 }
 
-std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
+std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c,
+                                const RowPlacer& placer) {
   const std::filesystem::path staged = staging_path(path);
   {
     h5::File file = h5::File::create(staged);
@@ -188,22 +207,29 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     file.set_attribute<std::uint64_t>("run_id", c.run_id);
     file.set_attribute<std::int64_t>("frames", c.frames);
     file.set_attribute<std::uint64_t>("history_bytes", c.history_bytes);
-    file.set_attribute<std::int64_t>(
-        "particle_count", c.particle_arrays.empty()
-                              ? 0
-                              : static_cast<std::int64_t>(c.particle_arrays.front().second.size()));
-    file.set_attribute<std::uint64_t>("content_hash", content_hash(c));
+    file.set_attribute<std::int64_t>("particle_count", c.particle_count);
     file.write_string("case", c.case_toml);
     file.write_string("written_by", c.written_by);
     file.write_strings("segments", c.segments);
 
+    // The particle arrays: written here, or reserved and written in place by
+    // the placer (each rank its own particles), which hashes them.
     const h5::Group particles = file.create_group("particles");
     std::vector<std::string> order;
+    RowPlacement placement{
+        RowPlacement::Content::checkpoint, std::filesystem::absolute(staged).string(), {}};
+    const auto count = static_cast<std::size_t>(c.particle_count);
     for (const auto& [name, values] : c.particle_arrays) {
-      particles.write(name, values);
+      if (placer)
+        placement.offsets.push_back(particles.reserve<double>(name, count));
+      else
+        particles.write(name, values);
       order.push_back(name);
     }
     particles.write_strings("_order", order);
+    const std::vector<std::uint64_t> hashes =
+        placer ? placer(placement).array_hashes : array_hashes(c);
+    file.set_attribute<std::uint64_t>("content_hash", content_hash(c, kFormatVersion, hashes));
 
     const h5::Group bodies = file.create_group("rigid_bodies");
     std::vector<std::string> body_names;
@@ -271,16 +297,17 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
         fmt::format("{}: no checkpoint (is this the output folder of a run?)", path.string()));
   Checkpoint c;
   std::uint64_t stored_hash = 0;
+  std::int64_t version = 0;
   try {
     const h5::File file = h5::File::open(path, false);
     if (!file.has("format") || file.read_string("format") != kFormat)
       throw h5::Error("it is not an mpsolid checkpoint");
-    const auto version = file.attribute<std::int64_t>("format_version");
-    if (version != kFormatVersion)
+    version = file.attribute<std::int64_t>("format_version");
+    if (version < kOldestRead || version > kFormatVersion)
       throw InputError(fmt::format(
-          "{}: checkpoint format version {}, this build reads only version {} ({}); resume it "
-          "with the mpsolid that wrote it ({}) or run the case afresh",
-          path.string(), version, kFormatVersion,
+          "{}: checkpoint format version {}, this build reads versions {} to {} ({}); resume "
+          "it with the mpsolid that wrote it ({}) or run the case afresh",
+          path.string(), version, kOldestRead, kFormatVersion,
           version < kFormatVersion ? "an older format" : "a newer format",
           file.has("written_by") ? file.read_string("written_by") : "unknown"));
     c.step = file.attribute<std::int64_t>("step");
@@ -290,6 +317,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     c.frames = file.attribute<std::int64_t>("frames");
     c.history_bytes = file.attribute<std::uint64_t>("history_bytes");
     const auto n = file.attribute<std::int64_t>("particle_count");
+    c.particle_count = n;
     stored_hash = file.attribute<std::uint64_t>("content_hash");
     if (c.step < 0 || c.frames < 0 || n < 0) throw h5::Error("negative step, frames or particles");
     c.case_toml = file.read_string("case");
@@ -375,7 +403,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));
   }
-  if (content_hash(c) != stored_hash)
+  if (content_hash(c, version, array_hashes(c)) != stored_hash)
     throw InputError(
         fmt::format("{}: damaged checkpoint: its contents do not match the hash stored with them",
                     path.string()));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "src/case/case_spec.hpp"
+#include "src/core/frame_rows.hpp"
 #include "src/core/solver_state.hpp"
 
 namespace mpsolid {
@@ -56,6 +57,7 @@ struct Checkpoint {
   std::uint64_t history_bytes = 0;    // length of history.csv (header included) at `step`
   std::string written_by;             // program version and git commit
   std::vector<std::string> segments;  // run.json segment objects so far, oldest first
+  std::int64_t particle_count = 0;
   std::vector<std::pair<std::string, std::vector<double>>> particle_arrays;  // id order
   std::vector<RigidBodyState> rigid_bodies;
   std::vector<LoadState> loads;
@@ -65,7 +67,9 @@ struct Checkpoint {
 };
 
 // The evolving state and its step (the other fields are left empty).
-Checkpoint capture_state(const SolverState& state);
+// Without `particle_values`, the particle arrays are named but left empty
+// (their rows are written in place: write_checkpoint's placer).
+Checkpoint capture_state(const SolverState& state, bool particle_values = true);
 
 // Overwrites a freshly set-up state with the checkpoint's.
 // Throws InputError, naming `source`, if the checkpoint does not fit: other
@@ -73,8 +77,11 @@ Checkpoint capture_state(const SolverState& state);
 void restore_state(SolverState& state, const Checkpoint& c, const std::string& source);
 
 // Writes `path` atomically: `path`.tmp, fsync, rename, fsync of the folder.
+// With `placer`, the particle arrays (named in `c`, no values) are reserved
+// and written in place by it (over MPI ranks, every rank its own particles).
 // Returns the bytes written.
-std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c);
+std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c,
+                                const RowPlacer& placer = {});
 
 // Reads and verifies a checkpoint (format, shapes, content hash). Throws
 // InputError naming the file if it is missing, damaged or not a checkpoint.

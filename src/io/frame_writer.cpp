@@ -10,39 +10,27 @@
 #include <string>
 #include <vector>
 
-#include "src/core/region_boundary.hpp"
 #include "src/io/atomic_file.hpp"
 #include "src/io/hdf5_file.hpp"
 
 namespace mpsolid {
 
 const std::vector<XdmfField>& frame_fields(int dimension) {
-  static const std::vector<XdmfField> space = {
-      {"id", "Int", 4, 1},
-      {"kind", "Char", 1, 1},
-      {"body", "Int", 4, 1},
-      {"velocity", "Float", 8, 3},
-      {"rotation", "Float", 8, 3},
-      {"angular_velocity", "Float", 8, 3},
-      {"volumetric_strain", "Float", 8, 1},
-      {"pressure", "Float", 8, 1},
-      {"surface", "Char", 1, 1},
-      {"normal", "Float", 8, 3},
+  // The frame's datasets but the position (the grid's geometry) and the
+  // orientation quaternion (the rotation vector stands for it).
+  static const auto of = [](int d) {
+    std::vector<XdmfField> out;
+    for (const RowLayout& f : frame_row_layout(d)) {
+      const std::string name = f.name;
+      if (name == "position" || name == "orientation") continue;
+      const char* type = f.type == RowType::f64 ? "Float" : f.type == RowType::i32 ? "Int" : "Char";
+      out.push_back(
+          {name, type, static_cast<int>(element_bytes(f.type)), static_cast<int>(f.columns)});
+    }
+    return out;
   };
-  if (dimension == 3) return space;
-  static const std::vector<XdmfField> fields = {
-      {"id", "Int", 4, 1},
-      {"kind", "Char", 1, 1},
-      {"body", "Int", 4, 1},
-      {"velocity", "Float", 8, 2},
-      {"rotation", "Float", 8, 1},
-      {"angular_velocity", "Float", 8, 1},
-      {"volumetric_strain", "Float", 8, 1},
-      {"pressure", "Float", 8, 1},
-      {"surface", "Char", 1, 1},
-      {"normal", "Float", 8, 2},
-  };
-  return fields;
+  static const std::vector<XdmfField> plane = of(2), space = of(3);
+  return dimension == 3 ? space : plane;
 }
 
 const std::vector<XdmfField>& gas_frame_fields() {
@@ -66,62 +54,18 @@ std::string frame_group(int index) {
   return fmt::format("{:06d}", index);
 }
 
-// The per-particle vectors of a space frame, in id order: `columns` arrays
-// interleaved, a row per particle.
-std::vector<double> rows_of(const std::vector<std::size_t>& order,
-                            std::initializer_list<const std::vector<double>*> columns) {
-  std::vector<double> out;
-  out.reserve(order.size() * columns.size());
-  for (const std::size_t i : order)
-    for (const std::vector<double>* c : columns) out.push_back((*c)[i]);
-  return out;
-}
-
-// A frame's fields in space. A particle is on the surface where it lacks one
-// of its six nearest neighbours on the lattice; its outward normal is then
-// minus the sum of its bonds' current vectors, normalised.
-void write_space_fields(const SolverState& state, const std::vector<std::size_t>& order,
-                        const h5::Group& group, int level) {
-  const ParticleStore& p = state.particles;
-  const BondTable& bonds = state.bonds;
-  const std::size_t n = p.size();
-  std::vector<double> rx(n, 0.0), ry(n, 0.0), rz(n, 0.0);  // the rotation vector
-  std::vector<double> nx(n, 0.0), ny(n, 0.0), nz(n, 0.0);
-  std::vector<std::int8_t> surface(n, 0);
-  const double nearest2 = 1.01 * bonds.geometry.l0 * bonds.geometry.l0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::AngleAxisd turn(Eigen::Quaterniond(p.qw[i], p.qx[i], p.qy[i], p.qz[i]));
-    const Eigen::Vector3d r = turn.angle() * turn.axis();
-    rx[i] = r.x();
-    ry[i] = r.y();
-    rz[i] = r.z();
-    int nearest = 0;
-    Eigen::Vector3d now = Eigen::Vector3d::Zero();
-    for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b) {
-      const std::size_t j = bonds.neighbor[b];
-      const Eigen::Vector3d r0(bonds.r0x[b], bonds.r0y[b], bonds.r0z[b]);
-      nearest += r0.squaredNorm() < nearest2;
-      now += Eigen::Vector3d(p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]);
-    }
-    const double length = now.norm();
-    if (nearest >= 6 || length == 0) continue;
-    surface[i] = 1;
-    nx[i] = -now.x() / length;
-    ny[i] = -now.y() / length;
-    nz[i] = -now.z() / length;
+// A dataset of `rows` rows of the field's type, reserved for rows written in
+// place (h5::Group::reserve).
+std::uint64_t reserve_rows(const h5::Group& group, const RowLayout& field, std::size_t rows) {
+  switch (field.type) {
+    case RowType::f64:
+      return group.reserve<double>(field.name, rows, field.columns);
+    case RowType::i32:
+      return group.reserve<std::int32_t>(field.name, rows, field.columns);
+    case RowType::i8:
+      return group.reserve<std::int8_t>(field.name, rows, field.columns);
   }
-  std::vector<std::int8_t> surface_flag(n);
-  for (std::size_t k = 0; k < n; ++k) surface_flag[k] = surface[order[k]];
-  const auto scalar = [&](const std::vector<double>& field) { return rows_of(order, {&field}); };
-  group.write("position", rows_of(order, {&p.x, &p.y, &p.z}), 3, level);
-  group.write("velocity", rows_of(order, {&p.vx, &p.vy, &p.vz}), 3, level);
-  group.write("orientation", rows_of(order, {&p.qw, &p.qx, &p.qy, &p.qz}), 4, level);
-  group.write("rotation", rows_of(order, {&rx, &ry, &rz}), 3, level);
-  group.write("angular_velocity", rows_of(order, {&p.omega_x, &p.omega_y, &p.omega}), 3, level);
-  group.write("volumetric_strain", scalar(p.strain), 1, level);
-  group.write("pressure", scalar(p.pressure), 1, level);
-  group.write("surface", surface_flag, 1, level);
-  group.write("normal", rows_of(order, {&nx, &ny, &nz}), 3, level);
+  return 0;
 }
 
 std::filesystem::path sidecar_path(const std::filesystem::path& path) {
@@ -212,86 +156,17 @@ std::uint64_t frames_run_id(const std::filesystem::path& path) {
   }
 }
 
-void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas) {
-  const ParticleStore& p = state.particles;
-  const auto& order = file_->storage_of_id;
-  const int index = frames_total();
-  const h5::Group group = file_->frames.create_group(frame_group(index));
-  group.set_attribute<std::int64_t>("step", state.step);
-  group.set_attribute<double>("time", spec.time_at(state.step));
+h5::Group FrameWriter::begin_frame(std::int64_t step, const CaseSpec& spec) {
+  h5::Group group = file_->frames.create_group(frame_group(frames_total()));
+  group.set_attribute<std::int64_t>("step", step);
+  group.set_attribute<double>("time", spec.time_at(step));
+  return group;
+}
 
-  const std::size_t n = p.size();
-  auto gather = [&](const std::vector<double>& field) {
-    std::vector<double> out(n);
-    for (std::size_t k = 0; k < n; ++k) out[k] = field[order[k]];
-    return out;
-  };
-  auto gather_pair = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    std::vector<double> out(2 * n);
-    for (std::size_t k = 0; k < n; ++k) {
-      out[2 * k] = a[order[k]];
-      out[2 * k + 1] = b[order[k]];
-    }
-    return out;
-  };
-  std::vector<std::int32_t> id(n), body(n);
-  std::vector<std::int8_t> kind(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    id[k] = p.id[order[k]];
-    body[k] = p.body[order[k]];
-    kind[k] = static_cast<std::int8_t>(p.kind[order[k]]);
-  }
-  if (p.dimension == 3) {
-    group.write("id", id, 1, compression_);
-    group.write("kind", kind, 1, compression_);
-    group.write("body", body, 1, compression_);
-    write_space_fields(state, order, group, compression_);
-    file_->file.flush();
-    frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
-    return;
-  }
-  // The surfaces' particles and their outward normals in the current state.
-  if (!surfaces_built_) {
-    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-      const Shape& shape = spec.bodies[b].shape;
-      if (spec.bodies[b].kind == Kind::wall || !boundary_problem(shape).empty()) continue;
-      surfaces_.emplace_back(state.body_ranges[b].begin,
-                             build_surface(shape, fill_shape(shape, spec.l0), spec.l0));
-    }
-    surfaces_built_ = true;
-  }
-  std::vector<double> nx(n, 0.0), ny(n, 0.0), ax, ay;
-  std::vector<std::int8_t> on_surface(n, 0);
-  for (const auto& [first, surface] : surfaces_) {
-    const std::size_t sites =
-        static_cast<std::size_t>(std::max_element(surface.site.begin(), surface.site.end())[0] + 1);
-    ax.assign(sites, 0.0);
-    ay.assign(sites, 0.0);
-    site_area_vectors(surface, p.x.data(), p.y.data(), first, ax, ay);
-    for (const std::uint32_t h : surface.host) {
-      const double length = std::hypot(ax[h], ay[h]);
-      on_surface[first + h] = 1;
-      if (length > 0) {
-        nx[first + h] = ax[h] / length;
-        ny[first + h] = ay[h] / length;
-      }
-    }
-  }
-  std::vector<std::int8_t> surface_flag(n);
-  for (std::size_t k = 0; k < n; ++k) surface_flag[k] = on_surface[order[k]];
-  const int level = compression_;
-  group.write("id", id, 1, level);
-  group.write("kind", kind, 1, level);
-  group.write("body", body, 1, level);
-  group.write("position", gather_pair(p.x, p.y), 2, level);
-  group.write("velocity", gather_pair(p.vx, p.vy), 2, level);
-  group.write("rotation", gather(p.theta), 1, level);
-  group.write("angular_velocity", gather(p.omega), 1, level);
-  group.write("volumetric_strain", gather(p.strain), 1, level);
-  group.write("pressure", gather(p.pressure), 1, level);
-  group.write("surface", surface_flag, 1, level);
-  group.write("normal", gather_pair(nx, ny), 2, level);
+void FrameWriter::end_frame(const h5::Group& group, std::int64_t step, const CaseSpec& spec,
+                            const GasFrame& gas) {
   if (!gas.empty()) {
+    const int level = compression_;
     group.write("gas_density", gas.density, 1, level);
     group.write("gas_velocity", gas.velocity, 2, level);
     group.write("gas_pressure", gas.pressure, 1, level);
@@ -306,7 +181,44 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const Ga
     }
   }
   file_->file.flush();  // a crashed run keeps its frames in the staging file
-  frames_.push_back({"/frames/" + frame_group(index), spec.time_at(state.step)});
+  frames_.push_back({"/frames/" + frame_group(frames_total()), spec.time_at(step)});
+}
+
+void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas) {
+  const ParticleStore& p = state.particles;
+  const std::size_t n = p.size();
+  const h5::Group group = begin_frame(state.step, spec);
+  const auto same = [](std::size_t g) { return static_cast<std::int64_t>(g); };
+  if (p.dimension != 3 && !surfaces_built_) {
+    std::vector<std::pair<Kind, const Shape*>> bodies;
+    for (const BodySpec& b : spec.bodies) bodies.emplace_back(b.kind, &b.shape);
+    surfaces_ = frame_surfaces(bodies, state.body_ranges, spec.l0);
+    surfaces_built_ = true;
+  }
+  const SurfaceMarks marks =
+      p.dimension == 3 ? space_surface_marks(state, {0, n})
+                       : plane_surface_marks(surfaces_,
+                                             surface_nodes(surfaces_, p.x.data(), p.y.data(), same,
+                                                           [](std::size_t) { return true; }),
+                                             n, same);
+  for (const RowLayout& field : frame_row_layout(p.dimension))
+    std::visit(
+        [&](const auto& values) { group.write(field.name, values, field.columns, compression_); },
+        frame_rows(field, p, file_->storage_of_id, marks));
+  end_frame(group, state.step, spec, gas);
+}
+
+double FrameWriter::write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
+                                 const RowPlacer& placer) {
+  if (compression_ > 0) throw std::logic_error("write_placed: compressed frames are not placed");
+  const h5::Group group = begin_frame(step, spec);
+  RowPlacement placement{
+      RowPlacement::Content::frame, std::filesystem::absolute(staging_path(path_)).string(), {}};
+  for (const RowLayout& field : frame_row_layout(dimension_))
+    placement.offsets.push_back(reserve_rows(group, field, particles_));
+  const PlacedRows placed = placer(placement);
+  end_frame(group, step, spec, gas);
+  return placed.seconds;
 }
 
 std::uintmax_t FrameWriter::bytes_written() const {

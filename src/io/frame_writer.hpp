@@ -7,12 +7,17 @@
 #include <vector>
 
 #include "src/case/case_spec.hpp"
+#include "src/core/frame_rows.hpp"
 #include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/surface.hpp"
 #include "src/io/xdmf_writer.hpp"
 
 namespace mpsolid {
+
+namespace h5 {
+class Group;
+}
 
 class FrameWriter {
  public:
@@ -32,6 +37,11 @@ class FrameWriter {
   // The current state (fields must be refreshed) as the next frame, with
   // the gas's fields (none when `gas` is empty).
   void write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas = {});
+  // The next frame at `step` with its particles' rows written in place by
+  // `placer` (over MPI ranks, every rank its own; uncompressed files only).
+  // Returns the slowest rank's seconds writing its rows.
+  double write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
+                      const RowPlacer& placer);
   // Publishes a copy of the file as it is now (and the sidecar); writing goes on.
   void publish_copy();
   // Closes the file and renames it to `path`; writes the sidecar.
@@ -42,15 +52,17 @@ class FrameWriter {
 
  private:
   struct File;
+  // A frame's group with its step and time; its gas, and the frame counted.
+  h5::Group begin_frame(std::int64_t step, const CaseSpec& spec);
+  void end_frame(const h5::Group& group, std::int64_t step, const CaseSpec& spec,
+                 const GasFrame& gas);
   void write_sidecar() const;
   std::filesystem::path path_;
   std::unique_ptr<File> file_;
   std::vector<XdmfFrame> frames_;
   XdmfGasGrid gas_grid_;  // cells 0 x 0 without a gas
-  // Each elastic or rigid body's surface with its first storage index, for
-  // the frames' surface flag and normal, built at the first frame (bodies
-  // whose holes touch have none).
-  std::vector<std::pair<std::size_t, Surface>> surfaces_;
+  // In the plane, the surfaces a frame marks, built at the first frame.
+  std::vector<FrameSurface> surfaces_;
   bool surfaces_built_ = false;
   int first_frame_ = 0;
   int compression_ = 0;

@@ -163,6 +163,27 @@ void Group::write(const std::string& name, const std::vector<T>& data, std::size
                    "cannot write " + where(name));
 }
 
+template <class T>
+std::uint64_t Group::reserve(const std::string& name, std::size_t rows, std::size_t columns) const {
+  static_assert(kSupported<T>);
+  const hsize_t dims[2] = {rows, columns};
+  const int rank = columns == 1 ? 1 : 2;
+  Handle space(checked(H5Screate_simple(rank, dims, nullptr), "dataspace for " + where(name)),
+               H5Sclose);
+  Handle props(checked(H5Pcreate(H5P_DATASET_CREATE), "properties"), H5Pclose);
+  checked_status(H5Pset_layout(props, H5D_CONTIGUOUS), "layout of " + where(name));
+  checked_status(H5Pset_alloc_time(props, H5D_ALLOC_TIME_EARLY), "allocation of " + where(name));
+  checked_status(H5Pset_fill_time(props, H5D_FILL_TIME_NEVER), "fill of " + where(name));
+  Handle set(checked(H5Dcreate2(id_, name.c_str(), memory_type<T>(), space, H5P_DEFAULT, props,
+                                H5P_DEFAULT),
+                     "cannot create " + where(name)),
+             H5Dclose);
+  if (rows == 0) return 0;
+  const haddr_t offset = H5Dget_offset(set);
+  if (offset == HADDR_UNDEF) throw Error("HDF5 error: no file offset for " + where(name));
+  return static_cast<std::uint64_t>(offset);
+}
+
 DatasetInfo Group::info(const std::string& name) const {
   if (!has(name)) throw Error(fmt::format("{} is missing", where(name)));
   Handle set(checked(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), where(name) + " is not a dataset"),
@@ -312,11 +333,12 @@ bool Group::has_attribute(const std::string& name) const {
   return H5Aexists(id_, name.c_str()) > 0;
 }
 
-#define MPSOLID_H5_INSTANTIATE(T)                                                             \
-  template void Group::write<T>(const std::string&, const std::vector<T>&, std::size_t, int)  \
-      const;                                                                                  \
-  template std::vector<T> Group::read<T>(const std::string&, std::size_t, std::size_t) const; \
-  template void Group::set_attribute<T>(const std::string&, T) const;                         \
+#define MPSOLID_H5_INSTANTIATE(T)                                                               \
+  template void Group::write<T>(const std::string&, const std::vector<T>&, std::size_t, int)    \
+      const;                                                                                    \
+  template std::vector<T> Group::read<T>(const std::string&, std::size_t, std::size_t) const;   \
+  template std::uint64_t Group::reserve<T>(const std::string&, std::size_t, std::size_t) const; \
+  template void Group::set_attribute<T>(const std::string&, T) const;                           \
   template T Group::attribute<T>(const std::string&) const;
 MPSOLID_H5_INSTANTIATE(double)
 MPSOLID_H5_INSTANTIATE(std::int8_t)

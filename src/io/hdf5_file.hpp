@@ -61,6 +61,12 @@ class Group {
   template <class T>
   void write(const std::string& name, const std::vector<T>& data, std::size_t columns = 1,
              int deflate = 0) const;
+  // A contiguous dataset of rows x columns (1-D when columns == 1), its
+  // space allocated now and never filled, for rows written in place by other
+  // processes: returns the file offset of its first byte (row k at offset +
+  // k * columns * sizeof(T), native numbers as in memory); 0 when empty.
+  template <class T>
+  std::uint64_t reserve(const std::string& name, std::size_t rows, std::size_t columns = 1) const;
   // Reads a dataset that must be rows x columns of T (1-D when columns == 1).
   template <class T>
   std::vector<T> read(const std::string& name, std::size_t rows, std::size_t columns = 1) const;

@@ -138,6 +138,14 @@ void RunFolder::write_frame(const SolverState& state, const CaseSpec& spec, cons
   last_frame_step_ = state.step;
 }
 
+void RunFolder::write_placed_frame(const SolverState& state, const CaseSpec& spec,
+                                   const Diagnostics& d, const HistoryReadings* readings,
+                                   const GasFrame& gas, const RowPlacer& placer) {
+  write_history(state, spec, d, readings);
+  frames_.write_placed(state.step, spec, gas, placer);
+  last_frame_step_ = state.step;
+}
+
 void RunFolder::fill(RunFacts& facts) const {
   facts.frames = frames_.frames_written();
   facts.bytes_written = history_.bytes_written() + frames_.bytes_written();
@@ -146,7 +154,7 @@ void RunFolder::fill(RunFacts& facts) const {
   facts.checkpoint_seconds = checkpoint_seconds_;
 }
 
-void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts) {
+void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts, const RowPlacer& placer) {
   const SolverState& state = in.state;
   const CaseSpec& spec = in.spec;
   const auto start = std::chrono::steady_clock::now();
@@ -154,7 +162,7 @@ void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts) {
     history_.publish_copy();
     frames_.publish_copy();
   }
-  Checkpoint c = capture_state(state);
+  Checkpoint c = capture_state(state, !placer);
   c.gas = in.gas;
   c.case_toml = spec.resolved_toml;
   c.bond_hash = bond_hash_;
@@ -168,7 +176,7 @@ void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts) {
   facts.wall_seconds = std::chrono::duration<double>(start - facts.started).count();
   c.segments = previous_segments_;
   c.segments.push_back(segment_json(in, facts).dump());
-  checkpoint_bytes_ += write_checkpoint(checkpoint_path(dir_), c);
+  checkpoint_bytes_ += write_checkpoint(checkpoint_path(dir_), c, placer);
   ++checkpoints_;
   last_checkpoint_step_ = state.step;
   checkpoint_seconds_ +=

@@ -47,10 +47,18 @@ class RunFolder {
                      const HistoryReadings* readings = nullptr);
   void write_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
                    const GasFrame& gas = {});
+  // A frame whose particles' rows `placer` writes in place (over MPI ranks,
+  // every rank its own), with its history row (`state`: rank 0's copy, its
+  // particles' readings given or read from it).
+  void write_placed_frame(const SolverState& state, const CaseSpec& spec, const Diagnostics& d,
+                          const HistoryReadings* readings, const GasFrame& gas,
+                          const RowPlacer& placer);
   // Publishes copies of the outputs (unless published), then writes
   // checkpoint.h5 with the run.json segments so far, this one described by
-  // `facts` (its figures are brought up to date here).
-  void checkpoint(const RunReportInputs& in, RunFacts facts);
+  // `facts` (its figures are brought up to date here). With `placer`, the
+  // particle arrays are written in place by it and `in.state`'s particles
+  // are not read.
+  void checkpoint(const RunReportInputs& in, RunFacts facts, const RowPlacer& placer = {});
   // Renames the staging files to their names (end of the run).
   void publish();
   // Brings the output figures of `facts` up to date.

@@ -67,6 +67,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   for (std::size_t b = 0; b < spec.bodies.size() && b < local.body_ranges.size(); ++b)
     if (spec.bodies[b].kind == Kind::elastic) part.extent_ranges.push_back(local.body_ranges[b]);
   part.probes = std::move(local.probes);
+  part.body_ranges = local.body_ranges;
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);

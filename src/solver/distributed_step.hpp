@@ -46,6 +46,7 @@ struct RankPart {
   // ranges in the case's order, the probes.
   std::vector<Range> extent_ranges;
   std::vector<std::size_t> probes;
+  std::vector<Range> body_ranges;  // every body's (global storage indices)
   // The owned particles bonded to no ghost (local indices; empty at its
   // end when there are none): their forces read only owned fields.
   Range bonded_to_owned_only;

@@ -33,7 +33,7 @@ class OneRankStepper final : public Stepper {
   void keep_good(SolverState& state) override;
   void restore_good(SolverState& state) override;
   std::int64_t good_step() const override { return good_.step; }
-  std::vector<RankTimes> rank_times() const override { return {}; }
+  std::vector<RankTimes> rank_times(SolverState&) override { return {}; }
   ThreadCrossing thread_crossing() const override;
 
  private:

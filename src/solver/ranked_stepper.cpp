@@ -10,6 +10,7 @@
 #include "src/distributed/state_slice.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/rank_rows.hpp"
 #include "src/solver/simulation.hpp"
 
 namespace mpsolid {
@@ -18,6 +19,13 @@ struct RankStepping {
   RankPart part;
   double dt = 0;
   IntegrityLimits limits;
+  // A frame's surfaces in the plane, made from the bodies' shapes at the
+  // first frame this rank writes.
+  std::vector<std::pair<Kind, Shape>> shapes;
+  double l0 = 0;
+  std::vector<FrameSurface> surfaces;
+  bool surfaces_made = false;
+  RowPlacement placement;              // of the batch that writes rows
   Decomposition decomposition;         // rank 0: who owns what
   std::int64_t rebuilds_reported = 0;  // this rank's contact list rebuilds
   std::vector<double> good;            // the last good slice (step first), as sent
@@ -74,6 +82,8 @@ std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) 
   parts->limits = {spec.stability.min_jacobian};
   parts->part = make_rank_part(spec, std::move(local));
   parts->rebuilds_reported = parts->part.local.contact.rebuilds;
+  for (const BodySpec& b : spec.bodies) parts->shapes.emplace_back(b.kind, b.shape);
+  parts->l0 = spec.l0;
   return parts;
 }
 
@@ -97,31 +107,41 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
     StateSlice::append(p.local, p.layout.owned, parts.good);
   }
   std::vector<double> back;
-  if (how.bring_back) {
-    StateSlice::append(p.local, p.layout.owned, back);
+  if (how.bring_back) StateSlice::append(p.local, p.layout.owned, back);
+  if (how.bring_back || how.report) {
     append_report(p, p.local.contact.rebuilds - parts.rebuilds_reported, back);
     parts.rebuilds_reported = p.local.contact.rebuilds;
   }
-  if (how.fields) append_rank_fields(p, world, parts.limits, back, !how.check);
+  if (how.fields) append_rank_fields(p, world, parts.limits, back, !how.check && !how.write_rows);
   if (how.check) append_rank_check(p, back);
+  if (how.write_rows) {
+    const bool frame = parts.placement.content == RowPlacement::Content::frame;
+    if (frame && p.local.particles.dimension != 3 && !parts.surfaces_made) {
+      std::vector<std::pair<Kind, const Shape*>> bodies;
+      for (const auto& [kind, shape] : parts.shapes) bodies.emplace_back(kind, &shape);
+      parts.surfaces = frame_surfaces(bodies, p.body_ranges, parts.l0);
+      parts.surfaces_made = true;
+    }
+    append_rank_rows(p, world, parts.surfaces, parts.placement, back);
+  }
   return back;
 }
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 64;
+constexpr std::int64_t kExchangeFlags = 256;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
          (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
-         (how.restore_good ? 32 : 0);
+         (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
 }
 Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0, (flags & 2) != 0,  (flags & 4) != 0,
-          (flags & 8) != 0, (flags & 16) != 0, (flags & 32) != 0};
+  return {(flags & 1) != 0,  (flags & 2) != 0,  (flags & 4) != 0,  (flags & 8) != 0,
+          (flags & 16) != 0, (flags & 32) != 0, (flags & 64) != 0, (flags & 128) != 0};
 }
 }  // namespace
 
@@ -214,6 +234,17 @@ void RankedStepper::restore_good(SolverState& global) {
   ranks_ahead_ = true;  // rank 0's copy follows at its next read
 }
 
+PlacedRows RankedStepper::place_rows(SolverState& global, const RowPlacement& placement,
+                                     PhaseTimers&) {
+  parts_->placement = placement;
+  const bool frame = placement.content == RowPlacement::Content::frame;
+  const RankFields fields =
+      exchange(global, 0, {.send_slices = ranks_behind_, .fields = frame, .write_rows = true});
+  if (frame) fields_ = fields;
+  ranks_behind_ = false;
+  return placed_;
+}
+
 void RankedStepper::bring_to_rank_zero(SolverState& global) {
   if (!ranks_ahead_) return;
   exchange(global, 0, {.bring_back = true});
@@ -225,6 +256,10 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
   followers_.send_command(steps, how);
+  if (how.write_rows) {
+    std::string text = encode_placement(parts_->placement);
+    world.broadcast(text);
+  }
   if (how.send_slices) {
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
@@ -240,22 +275,32 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   global.step = p.local.step;
   RankFields out;
   if (!how.answered()) return out;
-  if (how.bring_back) rank_times_.clear();
+  if (how.bring_back || how.report) rank_times_.clear();
+  if (how.write_rows) placed_ = {};
   std::vector<OrderedSumPart<1>> energy_parts;
   RankChecks checks(p.extent_ranges.size());
+  std::string write_failure;  // the first rank's that could not write its rows
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
     if (how.bring_back) {
       StateSlice::read(global, d.owned(r), back, at);
       count_slice_move(r, at);
+    }
+    if (how.bring_back || how.report) {
       rank_times_.push_back(read_report(back, at, r, global.contact));
       at += kReportSize;
     }
     if (how.fields)
-      read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out, !how.check);
+      read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out,
+                       !how.check && !how.write_rows);
     if (how.check) checks.read(back, at, global, d.owned(r));
+    if (how.write_rows) {
+      const std::string failed = read_rank_rows(back, at, r, parts_->placement, placed_);
+      if (write_failure.empty()) write_failure = failed;
+    }
   }
+  if (!write_failure.empty()) throw std::runtime_error(write_failure);
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);
   return out;
@@ -267,7 +312,8 @@ void RankedStepper::count_slice_move(int r, std::size_t doubles) {
   m.bytes += static_cast<double>(doubles * sizeof(double));
 }
 
-std::vector<RankTimes> RankedStepper::rank_times() const {
+std::vector<RankTimes> RankedStepper::rank_times(SolverState& global) {
+  exchange(global, 0, {.report = true});
   std::vector<RankTimes> times = rank_times_;
   for (std::size_t r = 0; r < times.size() && r < slice_moves_.size(); ++r) {
     times[r].slice_moves = slice_moves_[r].moves;
@@ -314,6 +360,11 @@ int follow_rank_zero(const Communicator& world) {
       if (command < 0) return parts ? 0 : 2;
       if (!parts) throw std::logic_error("steps for a refused case");
       const Exchange how = exchange_of(command);
+      if (how.write_rows) {
+        std::string placement;
+        world.broadcast(placement);
+        parts->placement = decode_placement(placement);
+      }
       if (how.send_slices) take_slice(parts->part, world.receive(0));
       const std::vector<double> back = step_and_report(*parts, world, steps_of(command), how);
       if (how.answered()) world.send(0, back);

@@ -11,8 +11,9 @@
 // rank count.
 //
 // Every model and contact are decomposed, each rigid or loaded body owned
-// by one rank. The command line makes rank 0's Followers; a Simulation given
-// them steps through a RankedStepper.
+// by one rank. Frames and checkpoints need no slice either: each rank
+// writes its own particles' rows in place (src/solver/rank_rows.hpp). The command line makes rank
+// 0's Followers; a Simulation given them steps through a RankedStepper.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -38,8 +39,10 @@ struct Exchange {
   bool check = false;         // with the fields, a check's figures instead of their arrays
   bool keep_good = false;     // each rank keeps its slice as the last good state
   bool restore_good = false;  // before the steps: each rank puts it back
+  bool write_rows = false;    // each rank writes its rows of a placement (rank_rows.hpp)
+  bool report = false;        // each rank's times and memory, without its slice
   // Whether each rank sends rank 0 a message after the steps.
-  bool answered() const { return bring_back || fields; }
+  bool answered() const { return bring_back || fields || write_rows || report; }
 };
 
 // Rank 0's link to the other ranks: the case, then a command per batch, then
@@ -101,8 +104,13 @@ class RankedStepper final : public Stepper {
   void keep_good(SolverState& global) override;
   void restore_good(SolverState& global) override;
   std::int64_t good_step() const override { return good_step_; }
-  // As of the last batch that brought the slices back, with the slices' moves.
-  std::vector<RankTimes> rank_times() const override;
+  // Every rank writes its own particles' rows of `placement` (a frame's
+  // after the fields round at the current positions): no slice moves.
+  bool places_rows() const override { return true; }
+  PlacedRows place_rows(SolverState& global, const RowPlacement& placement,
+                        PhaseTimers& timers) override;
+  // Each rank's report, asked now, with the slices' moves so far.
+  std::vector<RankTimes> rank_times(SolverState& global) override;
   // Each rank steps with its threads forking and joining per loop.
   ThreadCrossing thread_crossing() const override { return {}; }
 
@@ -125,6 +133,7 @@ class RankedStepper final : public Stepper {
   std::vector<SliceMoves> slice_moves_;  // per rank
   RankFields fields_;                    // of the last fields round
   CheckFigures check_;                   // of the last check's round
+  PlacedRows placed_;                    // of the last placement's round
   std::int64_t good_step_ = -1;          // of the ranks' last good slices
   double good_peak_work_ = 0;
   bool ranks_ahead_ = false;   // stepped since rank 0's copy was brought back

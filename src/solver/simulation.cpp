@@ -98,6 +98,21 @@ Simulation::HistorySource Simulation::history_source() {
   return {state(), nullptr};
 }
 
+RowPlacer Simulation::row_placer() {
+  if (!stepper_->places_rows()) return {};
+  return [this](const RowPlacement& placement) {
+    PlacedRows placed = stepper_->place_rows(state_, placement, timers_);
+    if (placement.content == RowPlacement::Content::frame) fields_on_ranks_ = true;
+    return placed;
+  };
+}
+
+Simulation::CheckpointSource Simulation::checkpoint_source() {
+  RowPlacer placer = row_placer();
+  if (placer && rank_readings_step_ == state_.step) return {state_, std::move(placer)};
+  return {state(), std::move(placer)};
+}
+
 SolverState& Simulation::state_to_change() {
   rank_readings_step_ = -1;
   stepper_->bring_to_rank_zero(state_);

@@ -72,13 +72,27 @@ class Simulation {
     const HistoryReadings* readings;
   };
   HistorySource history_source();
+  // Over MPI ranks, writes a frame's or a checkpoint's particle rows in
+  // place, every rank its own (a frame's at the current positions, after
+  // the fields round), so that no slice moves; empty on one process.
+  RowPlacer row_placer();
+  // What a checkpoint reads with the placer: rank 0's copy, whose bodies,
+  // loads and step are current after a check over ranks at this step (else
+  // the state is brought back first), and row_placer().
+  struct CheckpointSource {
+    const SolverState& state;
+    RowPlacer placer;
+  };
+  CheckpointSource checkpoint_source();
+  // The bonds of the run (each once).
+  std::size_t bond_count() const { return state_.bonds.entry_count() / 2; }
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   PhaseTimers& timers() { return timers_; }
   const PhaseTimers& timers() const { return timers_; }
   // Over several MPI ranks: each rank's times, halo cost and memory so far;
   // empty on one rank.
-  std::vector<RankTimes> rank_times() const { return stepper_->rank_times(); }
+  std::vector<RankTimes> rank_times() { return stepper_->rank_times(state_); }
   // On one process with several threads: what crossed between them per
   // step (src/solver/thread_parts.hpp); threads = 0 when none stepped so.
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "kernels/model_common.hpp"
+#include "src/core/frame_rows.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/timers.hpp"
 #include "src/solver/rank_checks.hpp"
@@ -52,9 +53,17 @@ class Stepper {
   virtual void restore_good(SolverState& state) = 0;
   // The step of the state keep_good kept (-1: none yet).
   virtual std::int64_t good_step() const = 0;
+  // Whether place_rows writes a frame's or a checkpoint's particle rows on
+  // the ranks (over MPI ranks): every rank its own particles, in place in
+  // the file rank 0 laid out (a frame's at the current positions, after the
+  // fields round).
+  virtual bool places_rows() const { return false; }
+  virtual PlacedRows place_rows(SolverState&, const RowPlacement&, PhaseTimers&) {
+    throw std::logic_error("place_rows: no ranks to write");
+  }
   // Each rank's times, halo cost and memory so far, for run.json (empty on
   // one rank).
-  virtual std::vector<RankTimes> rank_times() const = 0;
+  virtual std::vector<RankTimes> rank_times(SolverState& state) = 0;
   // With threads stepping as ranks on one process: what crossed between
   // them per step, and each thread's part (threads = 0 otherwise).
   virtual ThreadCrossing thread_crossing() const = 0;

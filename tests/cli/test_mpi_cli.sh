@@ -10,7 +10,9 @@
 #    serial bits;
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
 #    and so does an inverted bond (the same diagnosis and outputs);
-#  - the finite-strain model at 2 ranks gives the serial bits too;
+#  - the finite-strain model at 2 ranks gives the serial bits too, and so
+#    does the rod in space (its frames' surface marks from each rank's
+#    bonds), resumed at 3 ranks;
 #  - a blast-wave load at 2 ranks, and resumed at 3 mid-wave, too;
 #  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
 #    during the shock's reflection, gives the serial bits;
@@ -20,10 +22,10 @@
 #    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
 #    times, and its halo time and bytes;
-#  - the particles stay on their ranks between batches: their slices come
-#    back to rank 0 only when it reads the state for a frame or a
-#    checkpoint, never for a check or a history row (run.json's
-#    slice_moves).
+#  - the particles stay on their ranks: no slice comes back to rank 0 for a
+#    check, a history row, a frame or a checkpoint (run.json's slice_moves):
+#    each rank writes its own particles' rows of the frames and checkpoints;
+#    compressed frames still bring them to rank 0.
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -86,13 +88,13 @@ print(r["ranks"], "with an entry per rank" if ok else "WITHOUT a whole entry per
 done
 
 # A 2-rank run NAME with SETTINGS against the serial run in $TMP/sparse_serial:
-# the same outputs, and each rank's slice moved to rank 0 only for the 2
-# reads of the frame and the checkpoints (run.json's slice_moves, each move
-# a whole slice of 48 bytes per particle): the checks and the 4 history rows
-# read the ranks' shares.
+# the same outputs, and each rank's slice moved to rank 0 MOVES times
+# (run.json's slice_moves, each move a whole slice of 48 bytes per
+# particle): the checks and the 4 history rows read the ranks' shares, the
+# frames and checkpoints are written by every rank.
 slices_move_at_the_reads() {
-  local name=$1 what=$2
-  shift 2
+  local name=$1 what=$2 want=$3
+  shift 3
   mpi 2 "$name" run "$CASE" "${SETS[@]}" "$@" --out "$TMP/$name"
   if [[ $rc -ne 0 ]]; then
     fail "2 ranks, $what: exit $rc"
@@ -106,9 +108,9 @@ rows = json.load(open(sys.argv[1]))["per_rank"]
 print(" ".join(str(x["slice_moves"]) for x in rows),
       all(x["slice_bytes"] >= x["slice_moves"] * 48 * x["owned_particles"] for x in rows))' \
     "$TMP/$name/run.json")
-  [[ $moves == "2 2 True" ]] &&
-    ok "2 ranks, $what: each rank's slice moved only for the frame and the checkpoints" ||
-    fail "2 ranks, $what: slice moves per rank and bytes: $moves (want 2 2 True)"
+  [[ $moves == "$want $want True" ]] &&
+    ok "2 ranks, $what: each rank's slice moved $want times" ||
+    fail "2 ranks, $what: slice moves per rank and bytes: $moves (want $want $want True)"
 }
 
 # The particles stay on their ranks between batches: with checks and history
@@ -118,12 +120,18 @@ SPARSE=(--set output.history_interval=2.5e-5 --set time.end=1e-4)
 "$BIN" run "$CASE" "${SETS[@]}" "${SPARSE[@]}" --set stability.check_interval=2500 \
   --out "$TMP/sparse_serial" --threads 1 >/dev/null 2>&1 </dev/null ||
   fail "the serial run with sparse checks failed"
-slices_move_at_the_reads sparse "sparse checks" "${SPARSE[@]}" --set stability.check_interval=2500
+slices_move_at_the_reads sparse "sparse checks" 0 "${SPARSE[@]}" \
+  --set stability.check_interval=2500
 # A check and a history row read each rank's share of their figures and the
 # last good state stays on the ranks: with a check every 100 steps (100
-# checks), still no other move, and the serial outputs.
-slices_move_at_the_reads frequent "a check every 100 steps" "${SPARSE[@]}" \
+# checks), still no move, and the serial outputs.
+slices_move_at_the_reads frequent "a check every 100 steps" 0 "${SPARSE[@]}" \
   --set stability.check_interval=100
+# Compressed frames are written by rank 0: the slices come back for each
+# of the 2 frames (the checkpoints stay on the ranks), and the frames hold
+# the same numbers.
+slices_move_at_the_reads compressed "compressed frames" 2 "${SPARSE[@]}" \
+  --set output.compression=4
 
 # Ranks x threads: 2 x 2.
 mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2
@@ -248,6 +256,25 @@ else
   fail "finite_strain at 2 ranks (exit $rc) differs from the serial run:"
   sed 's/^/    /' "$TMP/fs2.compare" "$TMP/fs2.err" | head -n 8
 fi
+
+# The rod in space (finite_strain, 24,300 particles) at 2 ranks: the serial
+# bits, its frames (the surface marks from each rank's bonds) and
+# checkpoints written by every rank, no slice moved; resumed at 3 ranks.
+S3_SETS=(--set output.frame_interval=5e-5 --set output.history_interval=1e-5
+  --set output.checkpoint_interval=5e-5)
+"$BIN" run cases/shock_rod_3d.toml "${S3_SETS[@]}" --set time.end=1e-4 --out "$TMP/s3_serial" \
+  --threads 1 >/dev/null 2>&1 </dev/null || fail "the serial run in space failed"
+mpi 2 space2 run cases/shock_rod_3d.toml "${S3_SETS[@]}" --set time.end=5e-5 --out "$TMP/space2"
+[[ $rc -eq 0 ]] || fail "the rod in space at 2 ranks: exit $rc"
+moves=$(/usr/bin/python3 -c '
+import json, sys
+print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
+  "$TMP/space2/run.json")
+[[ $moves == 0 ]] && ok "the rod in space at 2 ranks: no slice moved" ||
+  fail "the rod in space at 2 ranks: $moves slice moves"
+mpi 3 space3 resume "$TMP/space2" --set time.end=1e-4
+[[ $rc -eq 0 ]] && same "the rod in space, 2 ranks resumed at 3" "$TMP/space2" "$TMP/s3_serial" ||
+  fail "the rod in space, 2 ranks resumed at 3: exit $rc"
 
 # A bad case: exit 2, one message (rank 0's) naming the key and its range,
 # nothing written, and no rank left waiting.

@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "src/core/hash.hpp"
 #include "src/core/parallel.hpp"
+#include "src/distributed/placed_rows.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/hdf5_file.hpp"
 #include "src/solver/case_loader.hpp"
@@ -230,11 +232,63 @@ TEST(Checkpoint, RefusesAnOlderFormatNamingItsWriter) {
     FAIL() << "read a checkpoint of an older format";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    for (const char* needle : {"format version 2", "reads only version 3", "older format",
+    for (const char* needle : {"format version 2", "reads versions 3 to 4", "older format",
                                "run the case afresh", "mpsolid"})
       EXPECT_NE(message.find(needle), std::string::npos) << needle << " in: " << message;
     EXPECT_NE(message.find(path.string()), std::string::npos) << message;
   }
+}
+
+// A placer that writes every particle's arrays in place from the whole
+// state, as the ranks do with theirs (src/solver/rank_rows.cpp), here in
+// two parts cut at `cut`.
+RowPlacer whole_state_placer(const SolverState& s, std::size_t cut) {
+  return [&s, cut](const RowPlacement& placement) {
+    EXPECT_EQ(placement.content, RowPlacement::Content::checkpoint);
+    const ParticleStore& p = s.particles;
+    const std::vector<StateArray>& arrays = state_arrays(p.dimension);
+    PlacedRows out;
+    out.array_hashes.assign(arrays.size(), 0);
+    for (const Range part : {Range{0, cut}, Range{cut, p.size()}}) {
+      const IdRuns runs = id_runs(p.id, part);
+      PlacedFile file(placement.file);
+      for (std::size_t a = 0; a < arrays.size(); ++a) {
+        std::vector<double> values;
+        for (const std::size_t i : runs.members) {
+          values.push_back((p.*arrays[a].member)[i]);
+          out.array_hashes[a] += placed_term(static_cast<std::uint64_t>(p.id[i]), values.back());
+        }
+        file.write(placement.offsets.at(a), sizeof(double), runs, values.data());
+      }
+      file.close();
+    }
+    return out;
+  };
+}
+
+TEST(Checkpoint, ParticleArraysWrittenInPlaceReadAsWrittenWhole) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  sim.advance(7);
+  const Checkpoint whole = full_checkpoint(sim);
+  write_checkpoint(dir.path() / "whole.h5", whole);
+  Checkpoint named = whole;
+  named.particle_arrays = capture_state(sim.state(), false).particle_arrays;
+  for (const auto& [name, values] : named.particle_arrays) EXPECT_TRUE(values.empty()) << name;
+  write_checkpoint(dir.path() / "placed.h5", named,
+                   whole_state_placer(sim.state(), sim.particle_count() / 3));
+  const Checkpoint a = read_checkpoint(dir.path() / "whole.h5");
+  const Checkpoint b = read_checkpoint(dir.path() / "placed.h5");  // its hash checked
+  ASSERT_EQ(a.particle_arrays.size(), b.particle_arrays.size());
+  for (std::size_t k = 0; k < a.particle_arrays.size(); ++k) {
+    EXPECT_EQ(a.particle_arrays[k].first, b.particle_arrays[k].first);
+    EXPECT_EQ(0, std::memcmp(a.particle_arrays[k].second.data(), b.particle_arrays[k].second.data(),
+                             a.particle_arrays[k].second.size() * sizeof(double)))
+        << a.particle_arrays[k].first;
+  }
+  EXPECT_EQ(
+      h5::File::open(dir.path() / "whole.h5", false).attribute<std::uint64_t>("content_hash"),
+      h5::File::open(dir.path() / "placed.h5", false).attribute<std::uint64_t>("content_hash"));
 }
 
 TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {

@@ -1,0 +1,151 @@
+#include "src/solver/rank_rows.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "src/core/hash.hpp"
+#include "src/distributed/placed_rows.hpp"
+
+namespace mpsolid {
+
+std::string encode_placement(const RowPlacement& placement) {
+  std::string text =
+      fmt::format("{} {}", static_cast<int>(placement.content), placement.offsets.size());
+  for (const std::uint64_t offset : placement.offsets) text += fmt::format(" {}", offset);
+  return text + "\n" + placement.file;
+}
+
+RowPlacement decode_placement(const std::string& text) {
+  const std::size_t line = text.find('\n');
+  if (line == std::string::npos) throw std::invalid_argument("decode_placement: no file");
+  std::istringstream head(text.substr(0, line));
+  RowPlacement out;
+  int content = 0;
+  std::size_t count = 0;
+  head >> content >> count;
+  out.content = static_cast<RowPlacement::Content>(content);
+  out.offsets.resize(count);
+  for (std::uint64_t& offset : out.offsets) head >> offset;
+  if (!head) throw std::invalid_argument("decode_placement: a short placement");
+  out.file = text.substr(line + 1);
+  return out;
+}
+
+namespace {
+// The index here of a global storage index among `layout`'s particles
+// (-1: not held).
+std::int64_t held(const LocalLayout& layout, std::size_t global) {
+  const auto at = std::lower_bound(layout.global_of.begin(), layout.global_of.end(), global);
+  if (at == layout.global_of.end() || *at != global) return -1;
+  return at - layout.global_of.begin();
+}
+
+// The frame's surface marks of the part's owned particles.
+SurfaceMarks rank_surface_marks(const RankPart& part, const RankGroup& world,
+                                const std::vector<FrameSurface>& surfaces) {
+  const ParticleStore& p = part.local.particles;
+  const LocalLayout& layout = part.layout;
+  if (p.dimension == 3) return space_surface_marks(part.local, layout.owned);
+  const Range owned = layout.owned_global;
+  const auto owns = [&](std::size_t g) { return g >= owned.begin && g < owned.end; };
+  const auto local_of = [&](std::size_t g) { return held(layout, g); };
+  NodePositions nodes = surface_nodes(surfaces, p.x.data(), p.y.data(), local_of, owns);
+  // Each rank's nodes (surface, node, x, y) to every rank.
+  std::vector<double> mine;
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    const auto& [first, surface] = surfaces[s];
+    for (std::size_t k = 0; k < surface.nodes(); ++k)
+      if (owns(first + surface.host[k]))
+        mine.insert(mine.end(),
+                    {static_cast<double>(s), static_cast<double>(k), nodes[s][k].x, nodes[s][k].y});
+  }
+  const std::vector<double> all = world.all_gather(mine);
+  for (std::size_t at = 0; at + 3 < all.size(); at += 4)
+    nodes[static_cast<std::size_t>(all[at])][static_cast<std::size_t>(all[at + 1])] = {all[at + 2],
+                                                                                       all[at + 3]};
+  return plane_surface_marks(surfaces, nodes, p.size(), [&](std::size_t g) -> std::int64_t {
+    return owns(g) ? static_cast<std::int64_t>(layout.local_of_owned(g)) : -1;
+  });
+}
+
+// A 64-bit hash in two doubles (each half exact).
+void append_hash(std::uint64_t h, std::vector<double>& out) {
+  out.push_back(static_cast<double>(h >> 32));
+  out.push_back(static_cast<double>(h & 0xffffffffull));
+}
+std::uint64_t read_hash(const std::vector<double>& in, std::size_t at) {
+  return (static_cast<std::uint64_t>(in.at(at)) << 32) | static_cast<std::uint64_t>(in.at(at + 1));
+}
+}  // namespace
+
+void append_rank_rows(RankPart& part, const RankGroup& world,
+                      const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
+                      std::vector<double>& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const ParticleStore& p = part.local.particles;
+  const bool frame = placement.content == RowPlacement::Content::frame;
+  std::optional<SurfaceMarks> marks;
+  if (frame) marks = rank_surface_marks(part, world, surfaces);
+  const IdRuns runs = id_runs(p.id, part.layout.owned);
+  std::vector<std::uint64_t> hashes;
+  int error = 0;
+  double bytes = 0;
+  try {
+    PlacedFile file(placement.file);
+    if (frame) {
+      const std::vector<RowLayout>& fields = frame_row_layout(p.dimension);
+      for (std::size_t f = 0; f < fields.size(); ++f)
+        std::visit(
+            [&](const auto& values) {
+              file.write(placement.offsets.at(f), fields[f].row_bytes(), runs, values.data());
+            },
+            frame_rows(fields[f], p, runs.members, *marks));
+    } else {
+      const std::vector<StateArray>& arrays = state_arrays(p.dimension);
+      std::vector<double> values(runs.members.size());
+      for (std::size_t a = 0; a < arrays.size(); ++a) {
+        const std::vector<double>& from = p.*arrays[a].member;
+        std::uint64_t hash = 0;
+        for (std::size_t k = 0; k < values.size(); ++k) {
+          const std::size_t i = runs.members[k];
+          values[k] = from[i];
+          hash += placed_term(static_cast<std::uint64_t>(p.id[i]), values[k]);
+        }
+        file.write(placement.offsets.at(a), sizeof(double), runs, values.data());
+        hashes.push_back(hash);
+      }
+    }
+    file.close();
+    bytes = file.bytes();
+  } catch (const PlacedRowsError& e) {
+    error = e.error_number != 0 ? e.error_number : EIO;
+  }
+  out.insert(out.end(),
+             {static_cast<double>(error), bytes,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              static_cast<double>(hashes.size())});
+  for (const std::uint64_t h : hashes) append_hash(h, out);
+}
+
+std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int rank,
+                           const RowPlacement& placement, PlacedRows& total) {
+  const int error = static_cast<int>(in.at(at));
+  total.bytes += in.at(at + 1);
+  total.seconds = std::max(total.seconds, in.at(at + 2));
+  const auto count = static_cast<std::size_t>(in.at(at + 3));
+  at += 4;
+  if (total.array_hashes.empty()) total.array_hashes.assign(count, 0);
+  for (std::size_t a = 0; a < count; ++a, at += 2) total.array_hashes.at(a) += read_hash(in, at);
+  if (error == 0) return "";
+  return fmt::format("{}: rank {} could not write its particles' rows: {}", placement.file, rank,
+                     std::strerror(error));
+}
+
+}  // namespace mpsolid

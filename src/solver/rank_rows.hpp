@@ -1,0 +1,37 @@
+#pragma once
+// A rank's rows of a frame or a checkpoint, written in place
+// (src/distributed/placed_rows.hpp) into the file rank 0 laid out
+// (src/core/frame_rows.hpp): each rank its own particles in id order, so no
+// rank gathers another's. A frame's surface marks come from the rank's own
+// particles: in space from their bonds (their partners' positions current
+// after the fields round), in the plane from the surfaces' nodes, each rank
+// computing the nodes its particles host and every rank receiving them all
+// (their number grows with a body's perimeter, not its area).
+#include <string>
+#include <vector>
+
+#include "src/core/frame_rows.hpp"
+#include "src/distributed/rank_group.hpp"
+#include "src/solver/distributed_step.hpp"
+
+namespace mpsolid {
+
+// A placement as one text, and back (for a broadcast).
+std::string encode_placement(const RowPlacement& placement);
+RowPlacement decode_placement(const std::string& text);
+
+// Writes the part's owned particles' rows of `placement` (a frame's after
+// the fields round) and appends what rank 0 reads: the system's error
+// number (0: written), the bytes, the seconds, a checkpoint's arrays' hash
+// terms. Every rank must call it (a plane frame's nodes are gathered).
+void append_rank_rows(RankPart& part, const RankGroup& world,
+                      const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
+                      std::vector<double>& out);
+// Adds rank `rank`'s report (as append_rank_rows wrote it) to `total`;
+// returns, when it could not write, what failed (the file, the rank, the
+// system's reason), else "". Rank 0 reads every rank's report before it
+// reports a failure, so that no rank waits on it.
+std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int rank,
+                           const RowPlacement& placement, PlacedRows& total);
+
+}  // namespace mpsolid

@@ -1,0 +1,160 @@
+// Rows written in place (src/distributed/placed_rows.hpp) into datasets an
+// HDF5 file reserved for them (h5::Group::reserve): ranks writing their
+// own rows of scattered ids give the file the HDF5 library reads back
+// exactly; the arrays' hash adds over any split; a placement travels as
+// text; failures name the file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "src/core/hash.hpp"
+#include "src/distributed/placed_rows.hpp"
+#include "src/io/hdf5_file.hpp"
+#include "src/solver/rank_rows.hpp"
+
+namespace mpsolid {
+namespace {
+
+std::filesystem::path temp_file(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("mpsolid_test_placed_rows_" + name);
+}
+
+// Ids 0..n-1 shuffled: storage order is not id order.
+std::vector<std::int32_t> shuffled_ids(std::size_t n, unsigned seed) {
+  std::vector<std::int32_t> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  std::mt19937 random(seed);
+  // Keep some runs: shuffle blocks of 7, then within every third block.
+  for (std::size_t b = 0; b + 7 <= n; b += 21)
+    std::shuffle(ids.begin() + b, ids.begin() + b + 7, random);
+  std::reverse(ids.begin() + static_cast<long>(n / 3), ids.begin() + static_cast<long>(n / 2));
+  return ids;
+}
+
+TEST(IdRuns, OrderByIdAndRunsOfConsecutiveIds) {
+  const std::vector<std::int32_t> ids = {7, 3, 4, 0, 5, 9, 8, 1};
+  const IdRuns r = id_runs(ids, {1, 7});  // ids 3 4 0 5 9 8
+  const std::vector<std::size_t> members = {3, 1, 2, 4, 6, 5};
+  EXPECT_EQ(r.members, members);
+  ASSERT_EQ(r.runs.size(), 3u);  // 0 | 3 4 5 | 8 9
+  EXPECT_EQ(r.runs[0].first_id, 0u);
+  EXPECT_EQ(r.runs[0].count, 1u);
+  EXPECT_EQ(r.runs[1].first_id, 3u);
+  EXPECT_EQ(r.runs[1].count, 3u);
+  EXPECT_EQ(r.runs[2].first_id, 8u);
+  EXPECT_EQ(r.runs[2].count, 2u);
+  EXPECT_TRUE(id_runs(ids, {4, 4}).runs.empty());
+}
+
+TEST(PlacedRows, RanksWritingTheirOwnRowsGiveTheFileTheLibraryReadsBack) {
+  const std::size_t n = 10'007;
+  const std::vector<std::int32_t> ids = shuffled_ids(n, 5);
+  // Per particle (by storage index): two doubles and a byte.
+  std::vector<double> xy(2 * n);
+  std::vector<std::int8_t> flag(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    xy[2 * i] = 0.5 + static_cast<double>(i);
+    xy[2 * i + 1] = -1.0 / (1.0 + static_cast<double>(i));
+    flag[i] = static_cast<std::int8_t>(i % 3);
+  }
+  const std::filesystem::path path = temp_file("frame.h5");
+  std::uint64_t at_xy = 0, at_flag = 0;
+  {
+    h5::File file = h5::File::create(path);
+    const h5::Group group = file.create_group("frame");
+    group.write<double>("before", {1.0, 2.0, 3.0});
+    at_xy = group.reserve<double>("position", n, 2);
+    at_flag = group.reserve<std::int8_t>("surface", n);
+    group.write<double>("after", {4.0, 5.0});
+    EXPECT_EQ(group.reserve<double>("empty", 0), 0u);
+    file.close();
+  }
+  // Three ranks cut anywhere, each writing its rows in id order.
+  const std::vector<std::size_t> cuts = {0, 3001, 7777, n};
+  double bytes = 0;
+  for (std::size_t r = 0; r + 1 < cuts.size(); ++r) {
+    const IdRuns runs = id_runs(ids, {cuts[r], cuts[r + 1]});
+    std::vector<double> rows_xy;
+    std::vector<std::int8_t> rows_flag;
+    for (const std::size_t i : runs.members) {
+      rows_xy.insert(rows_xy.end(), {xy[2 * i], xy[2 * i + 1]});
+      rows_flag.push_back(flag[i]);
+    }
+    PlacedFile file(path.string());
+    file.write(at_xy, 16, runs, rows_xy.data());
+    file.write(at_flag, 1, runs, rows_flag.data());
+    file.close();
+    bytes += file.bytes();
+  }
+  EXPECT_EQ(bytes, 17.0 * static_cast<double>(n));
+  const h5::File file = h5::File::open(path, false);
+  const h5::Group group = file.open_group("frame");
+  const std::vector<double> read_xy = group.read<double>("position", n, 2);
+  const std::vector<std::int8_t> read_flag = group.read<std::int8_t>("surface", n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto id = static_cast<std::size_t>(ids[i]);
+    ASSERT_EQ(read_xy[2 * id], xy[2 * i]) << i;
+    ASSERT_EQ(read_xy[2 * id + 1], xy[2 * i + 1]) << i;
+    ASSERT_EQ(read_flag[id], flag[i]) << i;
+  }
+  EXPECT_EQ(group.read<double>("before", 3), (std::vector<double>{1.0, 2.0, 3.0}));
+  EXPECT_EQ(group.read<double>("after", 2), (std::vector<double>{4.0, 5.0}));
+  std::filesystem::remove(path);
+}
+
+TEST(PlacedRows, AFileThatCannotBeOpenedIsNamed) {
+  const std::string missing = temp_file("missing/nowhere.h5").string();
+  try {
+    PlacedFile file(missing);
+    FAIL() << "opened a missing file";
+  } catch (const PlacedRowsError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+    EXPECT_NE(e.error_number, 0);
+  }
+}
+
+TEST(PlacedArrayHash, RanksTermsAddToTheWholeArraysHash) {
+  std::vector<double> values(5000);
+  for (std::size_t k = 0; k < values.size(); ++k)
+    values[k] = std::sin(static_cast<double>(k)) * 1e3;
+  const std::uint64_t whole = placed_array_hash(values);
+  // Any split, summed in any order.
+  for (const std::size_t cut :
+       {std::size_t{0}, std::size_t{1}, std::size_t{2500}, std::size_t{4999}}) {
+    std::uint64_t a = 0, b = 0;
+    for (std::size_t k = 0; k < cut; ++k) a += placed_term(k, values[k]);
+    for (std::size_t k = cut; k < values.size(); ++k) b += placed_term(k, values[k]);
+    EXPECT_EQ(b + a, whole) << cut;
+  }
+  // A moved value, a flipped bit, a lost sign: another hash.
+  std::vector<double> swapped = values;
+  std::swap(swapped[10], swapped[11]);
+  EXPECT_NE(placed_array_hash(swapped), whole);
+  std::vector<double> flipped = values;
+  flipped[4321] = std::nextafter(flipped[4321], 1e9);
+  EXPECT_NE(placed_array_hash(flipped), whole);
+  std::vector<double> zero = values;
+  zero[0] = -0.0;  // values[0] is +0.0
+  EXPECT_NE(placed_array_hash(zero), whole);
+}
+
+TEST(RowPlacement, TravelsAsText) {
+  const RowPlacement p{RowPlacement::Content::checkpoint,
+                       "/tmp/a folder/with spaces/checkpoint.h5.tmp",
+                       {2048, 18446744073709551000ull, 0}};
+  const RowPlacement q = decode_placement(encode_placement(p));
+  EXPECT_EQ(q.content, p.content);
+  EXPECT_EQ(q.file, p.file);
+  EXPECT_EQ(q.offsets, p.offsets);
+  EXPECT_THROW(decode_placement("0 3 1 2"), std::invalid_argument);
+  EXPECT_THROW(decode_placement("0 3 1 2\nfile"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mpsolid
