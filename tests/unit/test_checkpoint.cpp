@@ -291,6 +291,38 @@ TEST(Checkpoint, ParticleArraysWrittenInPlaceReadAsWrittenWhole) {
       h5::File::open(dir.path() / "placed.h5", false).attribute<std::uint64_t>("content_hash"));
 }
 
+// A checkpoint of format 3 (each particle array's bytes in its content hash;
+// tests/regression/data/README.md) still reads, its hash checked, and resumes
+// to the bits of a run that never stopped; a changed value in it is found.
+TEST(Checkpoint, AFormat3CheckpointResumesToTheSameBits) {
+  const std::filesystem::path path =
+      testing::source_path("tests/regression/data/shock_rod_checkpoint_format3.h5");
+  set_thread_count(1);
+  const Checkpoint c = read_checkpoint(path);
+  EXPECT_EQ(h5::File::open(path, false).attribute<std::int64_t>("format_version"), 3);
+  EXPECT_EQ(c.step, 1000);
+  Simulation resumed(load_case_text(c.case_toml, path.string()));
+  restore_state(resumed.state_to_change(), c, path.string());
+  resumed.advance(500);
+  Simulation straight(load_case_text(c.case_toml, path.string()));
+  straight.advance(1500);
+  expect_same_state(straight, resumed);
+  set_thread_count(available_cores());
+
+  TempDir dir;
+  const std::filesystem::path changed = dir.path() / "checkpoint.h5";
+  std::filesystem::copy_file(path, changed);
+  {
+    const h5::File file = h5::File::open(changed, true);
+    const h5::Group particles = file.open_group("particles");
+    std::vector<double> x = particles.read<double>("x", c.particle_arrays[0].second.size());
+    x[17] = std::nextafter(x[17], 1.0);
+    particles.remove("x");
+    particles.write("x", x);
+  }
+  EXPECT_THROW(read_checkpoint(changed), InputError);
+}
+
 TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {
   Simulation sim(testing::rod_case());
   Checkpoint c = full_checkpoint(sim);
