@@ -63,17 +63,25 @@ struct Field {
   char type;  // 'i' int32, 'b' int8, 'd' float64
   int cols;
 };
-const Field kFields[] = {
-    {"id", 'i', 1},         {"kind", 'b', 1},
-    {"body", 'i', 1},       {"position", 'd', 2},
-    {"velocity", 'd', 2},   {"rotation", 'd', 1},
-    {"angular_velocity", 'd', 1}, {"volumetric_strain", 'd', 1},
-    {"pressure", 'd', 1},   {"surface", 'b', 1},
-    {"normal", 'd', 2}};
+const Field kFields[] = {{"id", 'i', 1},
+                         {"kind", 'b', 1},
+                         {"body", 'i', 1},
+                         {"position", 'd', 2},
+                         {"velocity", 'd', 2},
+                         {"rotation", 'd', 1},
+                         {"angular_velocity", 'd', 1},
+                         {"volumetric_strain", 'd', 1},
+                         {"pressure", 'd', 1},
+                         {"surface", 'b', 1},
+                         {"normal", 'd', 2}};
 constexpr int kNF = sizeof(kFields) / sizeof(kFields[0]);
 
-int elem_bytes(const Field& f) { return f.type == 'i' ? 4 : f.type == 'b' ? 1 : 8; }
-std::size_t row_bytes(const Field& f) { return std::size_t(elem_bytes(f)) * f.cols; }
+int elem_bytes(const Field& f) {
+  return f.type == 'i' ? 4 : f.type == 'b' ? 1 : 8;
+}
+std::size_t row_bytes(const Field& f) {
+  return std::size_t(elem_bytes(f)) * f.cols;
+}
 hid_t mem_type(const Field& f) {
   return f.type == 'i' ? H5T_NATIVE_INT32 : f.type == 'b' ? H5T_NATIVE_INT8 : H5T_NATIVE_DOUBLE;
 }
@@ -86,7 +94,8 @@ hid_t file_type(const Field& f) {
   MPI_Abort(MPI_COMM_WORLD, 1);
   std::exit(1);
 }
-template <class T> T chk(T v, const char* what) {
+template <class T>
+T chk(T v, const char* what) {
   if (v < 0) die(what);
   return v;
 }
@@ -97,9 +106,16 @@ void fill(int fi, int64_t r0, int64_t rows, char* out) {
   for (int64_t r = r0; r < r0 + rows; ++r)
     for (int c = 0; c < f.cols; ++c) {
       const int64_t s = r * 3 + c + fi * 7;
-      if (f.type == 'i') { int32_t v = int32_t(s % 2000000000); std::memcpy(out, &v, 4); }
-      else if (f.type == 'b') { int8_t v = int8_t(s % 101); std::memcpy(out, &v, 1); }
-      else { double v = double(s) * 0.5 + 0.25; std::memcpy(out, &v, 8); }
+      if (f.type == 'i') {
+        int32_t v = int32_t(s % 2000000000);
+        std::memcpy(out, &v, 4);
+      } else if (f.type == 'b') {
+        int8_t v = int8_t(s % 101);
+        std::memcpy(out, &v, 1);
+      } else {
+        double v = double(s) * 0.5 + 0.25;
+        std::memcpy(out, &v, 8);
+      }
       out += elem_bytes(f);
     }
 }
@@ -291,12 +307,16 @@ int main(int argc, char** argv) {
 
   MPI_Barrier(MPI_COMM_WORLD);
   const double t0 = MPI_Wtime();
-  if (way == "gather") write_gather(path, p);
-  else if (way == "direct") write_direct(path, p);
+  if (way == "gather")
+    write_gather(path, p);
+  else if (way == "direct")
+    write_direct(path, p);
 #ifdef H5_HAVE_PARALLEL
-  else if (way == "pcoll" || way == "pindep") write_parallel(path, p, way == "pcoll");
+  else if (way == "pcoll" || way == "pindep")
+    write_parallel(path, p, way == "pcoll");
 #endif
-  else die(("unknown way (or needs parallel HDF5): " + way).c_str());
+  else
+    die(("unknown way (or needs parallel HDF5): " + way).c_str());
   MPI_Barrier(MPI_COMM_WORLD);
   const double cache = MPI_Wtime() - t0;
   if (way == "direct" || p.rank == 0) fsync_path(path);  // one node: flushes all ranks' pages

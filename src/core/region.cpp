@@ -300,6 +300,10 @@ std::vector<Point2> fill_shape(const Shape& shape, double l0) {
   return sites;
 }
 
+void visit_shape_sites(const Shape& shape, double l0, const std::function<void(Point2)>& site) {
+  for_each_site(shape, l0, [&](double x, double y) { site({x, y}); });
+}
+
 std::int64_t count_shape_sites(const Shape& shape, double l0) {
   std::int64_t n = 0;
   for_each_site(shape, l0, [&](double, double) { ++n; });

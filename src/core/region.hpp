@@ -17,6 +17,7 @@
 // sharing an edge split its sites. Circles and ellipses hold the points strictly inside their
 // curve; an annulus keeps its inner circle and not its outer one.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -98,6 +99,8 @@ bool shape_contains(const Shape& shape, Point2 p);
 // The lattice sites (centres ((k + 1/2) l0, (m + 1/2) l0)) inside the
 // shape, row by row (y outer, x inner).
 std::vector<Point2> fill_shape(const Shape& shape, double l0);
+// The same sites one at a time, in the same order, none kept.
+void visit_shape_sites(const Shape& shape, double l0, const std::function<void(Point2)>& site);
 // How many there would be, without storing them.
 std::int64_t count_shape_sites(const Shape& shape, double l0);
 // Whether one of them lies within `distance` of p.

@@ -165,6 +165,10 @@ std::vector<Point3> fill_shape3(const Shape3& shape, double l0) {
   return sites;
 }
 
+void visit_shape3_sites(const Shape3& shape, double l0, const std::function<void(Point3)>& site) {
+  for_each_site(shape, l0, site);
+}
+
 std::int64_t count_shape3_sites(const Shape3& shape, double l0) {
   std::int64_t n = 0;
   for_each_site(shape, l0, [&](Point3) { ++n; });

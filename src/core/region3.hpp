@@ -14,6 +14,7 @@
 // the points strictly inside its curved side; a sphere the points strictly
 // inside it.
 #include <cstdint>
+#include <functional>
 #include <variant>
 #include <vector>
 
@@ -82,6 +83,8 @@ bool shape3_contains(const Shape3& shape, Point3 p);
 // for a cube); an extrusion's layer by layer along z, each in the plane's
 // order.
 std::vector<Point3> fill_shape3(const Shape3& shape, double l0);
+// The same sites one at a time, in the same order, none kept.
+void visit_shape3_sites(const Shape3& shape, double l0, const std::function<void(Point3)>& site);
 // How many there would be, without storing them.
 std::int64_t count_shape3_sites(const Shape3& shape, double l0);
 // Whether some lattice site of the shape lies within `distance` of p.

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include "src/core/loads.hpp"
 
@@ -41,7 +42,8 @@ void apply_motion_in_space(ParticleStore& p, const BodySpec& body, Range r,
 }
 }  // namespace
 
-void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotation) {
+void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotation,
+                          const std::vector<std::array<double, 3>>* centroids) {
   ParticleStore& p = s.particles;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const BodySpec& body = spec.bodies[b];
@@ -55,7 +57,10 @@ void apply_initial_motion(SolverState& s, const CaseSpec& spec, bool with_rotati
     }
     if (body.kind != Kind::elastic) continue;
     double cx = 0, cy = 0, cz = 0;
-    centroid(p, r, cx, cy, cz);
+    if (centroids)
+      std::tie(cx, cy, cz) = std::tuple((*centroids)[b][0], (*centroids)[b][1], (*centroids)[b][2]);
+    else
+      centroid(p, r, cx, cy, cz);
     if (p.dimension == 3) {
       apply_motion_in_space(p, body, r, {cx, cy, cz}, with_rotation);
       continue;

@@ -10,6 +10,7 @@
 #include "src/distributed/state_slice.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/part_setup.hpp"
 #include "src/solver/rank_rows.hpp"
 #include "src/solver/simulation.hpp"
 
@@ -178,15 +179,23 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
-  // Each follower's part, built and sent one at a time (rank 0 never holds
-  // two); an empty message tells a follower the case was refused.
-  for (int r = 1; r < world.size(); ++r) {
-    try {
-      const LocalPart part = local_part(global, decomposition, r);
-      pack_local_part(part, [&](const std::vector<double>& piece) { world.send(r, piece); });
-    } catch (const std::invalid_argument& e) {
-      for (int rest = r; rest < world.size(); ++rest) world.send(rest, {});
-      throw refusal(spec, e.what(), world.size());
+  // A case the set-up by part covers: each follower sets its own part up
+  // from the case and the cut, which is all rank 0 sends.
+  if (part_set_up_covers(spec)) {
+    const std::vector<double> cut(decomposition.starts.begin(), decomposition.starts.end());
+    for (int r = 1; r < world.size(); ++r) world.send(r, cut);
+  } else {
+    // Otherwise each follower's part, built and sent one at a time (rank 0
+    // never holds two); an empty message tells a follower the case was
+    // refused.
+    for (int r = 1; r < world.size(); ++r) {
+      try {
+        const LocalPart part = local_part(global, decomposition, r);
+        pack_local_part(part, [&](const std::vector<double>& piece) { world.send(r, piece); });
+      } catch (const std::invalid_argument& e) {
+        for (int rest = r; rest < world.size(); ++rest) world.send(rest, {});
+        throw refusal(spec, e.what(), world.size());
+      }
     }
   }
   try {
@@ -346,7 +355,16 @@ int follow_rank_zero(const Communicator& world) {
     // An empty first message: rank 0 refused the case (and reports it).
     std::vector<double> first = world.receive(0);
     std::unique_ptr<RankStepping> parts;
-    if (!first.empty()) {
+    if (!first.empty() && part_set_up_covers(spec)) {
+      // The cut: this rank sets its own part up from the case.
+      Decomposition cut;
+      for (const double start : first) cut.starts.push_back(static_cast<std::size_t>(start));
+      try {
+        parts = make_parts(spec, set_up_part(spec, cut, world.rank()));
+      } catch (const std::invalid_argument& e) {
+        end_job(world, fmt::format("rank {}: {}", world.rank(), e.what()));
+      }
+    } else if (!first.empty()) {
       bool given = false;
       parts = make_parts(spec, unpack_local_part([&] {
                            if (given) return world.receive(0);

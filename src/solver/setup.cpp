@@ -7,20 +7,18 @@
 #include <limits>
 #include <numeric>
 
+#include "kernels/model_registry.hpp"
 #include "neighbor/bond_search.hpp"
 #include "src/core/region.hpp"
 #include "src/core/region3.hpp"
 #include "src/core/surface.hpp"
 #include "src/core/surface3.hpp"
+#include "src/solver/contact_setup.hpp"
+#include "src/solver/initial_motion.hpp"
 
 namespace mpsolid {
 
 namespace {
-struct NewParticle {
-  double x, y, z;
-  std::int32_t id, body;
-};
-
 // Storage rank of a body: walls first, then elastic bodies, then rigid
 // bodies, each group in case order.
 int group_of(Kind kind) {
@@ -28,65 +26,91 @@ int group_of(Kind kind) {
 }
 }  // namespace
 
+void visit_body_sites(const CaseSpec& spec, std::size_t b,
+                      const std::function<void(std::size_t, const Point3&)>& site) {
+  std::size_t k = 0;
+  if (spec.dimension == 3)
+    visit_shape3_sites(spec.bodies[b].shape3, spec.l0, [&](Point3 q) { site(k++, q); });
+  else
+    visit_shape_sites(spec.bodies[b].shape, spec.l0, [&](Point2 q) {
+      site(k++, Point3{q.x, q.y, 0.0});
+    });
+}
+
+BodyLayout body_layout(const CaseSpec& spec) {
+  BodyLayout out;
+  const std::size_t bodies = spec.bodies.size();
+  out.range.resize(bodies);
+  out.first_id.resize(bodies);
+  std::vector<std::size_t> count(bodies);
+  std::size_t ids = 0;
+  for (std::size_t b = 0; b < bodies; ++b) {
+    count[b] = static_cast<std::size_t>(spec.bodies[b].site_count(spec.l0, spec.dimension));
+    out.first_id[b] = ids;
+    ids += count[b];
+  }
+  out.order.resize(bodies);
+  std::iota(out.order.begin(), out.order.end(), 0);
+  std::stable_sort(out.order.begin(), out.order.end(), [&](std::size_t a, std::size_t c) {
+    return group_of(spec.bodies[a].kind) < group_of(spec.bodies[c].kind);
+  });
+  std::size_t next = 0;
+  for (const std::size_t b : out.order) {
+    out.range[b] = {next, next + count[b]};
+    next += count[b];
+  }
+  out.total = next;
+  return out;
+}
+
+void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::size_t b,
+                    const Point3& site, std::size_t id) {
+  const BodySpec& body = spec.bodies[b];
+  const Material& mat = spec.materials[static_cast<std::size_t>(body.material)];
+  const bool space = spec.dimension == 3;
+  const double mass = space ? mat.density * spec.l0 * spec.l0 * spec.l0
+                            : mat.density * spec.l0 * spec.l0 * spec.depth;
+  // A square particle's, and a cube's about any axis through its centre.
+  const double inertia = mass * spec.l0 * spec.l0 / 6.0;
+  p.x[i] = p.x0[i] = site.x;
+  p.y[i] = p.y0[i] = site.y;
+  if (space) p.z[i] = p.z0[i] = site.z;
+  p.id[i] = static_cast<std::int32_t>(id);
+  p.body[i] = static_cast<std::int32_t>(b);
+  p.material[i] = body.material;
+  p.kind[i] = body.kind;
+  p.inv_mass[i] = 1.0 / mass;
+  p.inv_inertia[i] = 1.0 / inertia;
+  p.lambda[i] = mat.lambda();
+  p.mu[i] = mat.mu();
+}
+
+BondGeometry case_bond_geometry(const CaseSpec& spec) {
+  return spec.dimension == 3 ? bond_geometry_3d(spec.l0) : bond_geometry(spec.l0, spec.depth);
+}
+
 SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   auto timer = timers.time(Phase::setup);
   SolverState s;
 
   // Ids in case order (bodies by name, sites row by row, in space layer by
-  // layer).
+  // layer); storage grouped by kind.
   const bool space = spec.dimension == 3;
-  std::vector<std::vector<NewParticle>> by_body(spec.bodies.size());
-  std::int32_t next_id = 0;
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-    const auto body = static_cast<std::int32_t>(b);
-    if (space)
-      for (const Point3& site : fill_shape3(spec.bodies[b].shape3, spec.l0))
-        by_body[b].push_back({site.x, site.y, site.z, next_id++, body});
-    else
-      for (const Point2& site : fill_shape(spec.bodies[b].shape, spec.l0))
-        by_body[b].push_back({site.x, site.y, 0.0, next_id++, body});
-  }
-
-  std::vector<std::size_t> order(spec.bodies.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return group_of(spec.bodies[a].kind) < group_of(spec.bodies[b].kind);
-  });
-
+  const BodyLayout layout = body_layout(spec);
+  const std::vector<std::size_t>& order = layout.order;
   ParticleStore& p = s.particles;
   p.dimension = spec.dimension;
-  p.resize(static_cast<std::size_t>(next_id));
-  s.body_ranges.resize(spec.bodies.size());
-  std::size_t next = 0;
-  for (std::size_t b : order) {
-    const BodySpec& body = spec.bodies[b];
-    const Material& mat = spec.materials[static_cast<std::size_t>(body.material)];
-    const double mass = space ? mat.density * spec.l0 * spec.l0 * spec.l0
-                              : mat.density * spec.l0 * spec.l0 * spec.depth;
-    // A square particle's, and a cube's about any axis through its centre.
-    const double inertia = mass * spec.l0 * spec.l0 / 6.0;
-    s.body_ranges[b] = {next, next + by_body[b].size()};
-    for (const NewParticle& np : by_body[b]) {
-      p.x[next] = p.x0[next] = np.x;
-      p.y[next] = p.y0[next] = np.y;
-      if (space) p.z[next] = p.z0[next] = np.z;
-      p.id[next] = np.id;
-      p.body[next] = np.body;
-      p.material[next] = body.material;
-      p.kind[next] = body.kind;
-      p.inv_mass[next] = 1.0 / mass;
-      p.inv_inertia[next] = 1.0 / inertia;
-      p.lambda[next] = mat.lambda();
-      p.mu[next] = mat.mu();
-      ++next;
-    }
-  }
+  p.resize(layout.total);
+  s.body_ranges = layout.range;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    visit_body_sites(spec, b, [&](std::size_t k, const Point3& site) {
+      place_particle(p, layout.range[b].begin + k, spec, b, site, layout.first_id[b] + k);
+    });
   p.set_kind_ranges();
 
   {
     auto t = timers.time(Phase::neighbors);
-    s.bonds =
-        build_bonds(p, space ? bond_geometry_3d(spec.l0) : bond_geometry(spec.l0, spec.depth));
+    s.bonds = build_bonds(p, case_bond_geometry(spec));
   }
 
   for (std::size_t b : order)
@@ -147,6 +171,12 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   }
   add_gas_loads(spec, s);
   return s;
+}
+
+void finish_set_up(SolverState& s, const CaseSpec& spec) {
+  s.contact = make_contact(spec, s);
+  schedule_loads(s, spec);
+  apply_initial_motion(s, spec, model_info(spec.model).uses_rotation);
 }
 
 void schedule_loads(SolverState& s, const CaseSpec& spec) {

@@ -1,6 +1,7 @@
 #pragma once
 // From a validated case to the initial solver state: lattice particles,
 // storage grouped by kind, masses, the bond table, rigid bodies and loads.
+#include <functional>
 #include <vector>
 
 #include "src/case/case_spec.hpp"
@@ -13,7 +14,31 @@ namespace mpsolid {
 // steps are set by schedule_loads from the case's fixed dt.
 SolverState set_up(const CaseSpec& spec, PhaseTimers& timers);
 
+// Where each body's particles go, from its sites' count alone: its storage
+// range (walls, then elastic, then rigid bodies, each group in case order)
+// and its first id (ids in case order, each body's in its fill order).
+struct BodyLayout {
+  std::vector<Range> range;
+  std::vector<std::size_t> first_id;
+  std::vector<std::size_t> order;  // the bodies in storage order
+  std::size_t total = 0;
+};
+BodyLayout body_layout(const CaseSpec& spec);
+// Calls site(k, position) for each lattice site of body b in its fill order
+// (k from 0; z = 0 in the plane).
+void visit_body_sites(const CaseSpec& spec, std::size_t b,
+                      const std::function<void(std::size_t, const Point3&)>& site);
+// The bond geometry of the case's lattice (in the plane, over its depth).
+BondGeometry case_bond_geometry(const CaseSpec& spec);
+// Particle i of `p` as set-up makes it: a site of body b with its id.
+void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::size_t b,
+                    const Point3& site, std::size_t id);
+
 // Each load's first step k (k dt >= start); spec.dt must be fixed.
 void schedule_loads(SolverState& s, const CaseSpec& spec);
+
+// A set-up state made ready to run (spec.dt fixed): contact's candidates,
+// the loads' first steps, the initial motion.
+void finish_set_up(SolverState& s, const CaseSpec& spec);
 
 }  // namespace mpsolid

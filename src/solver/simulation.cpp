@@ -34,9 +34,7 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
   spec_ = std::move(choice.spec);
   stable_step_ = choice.estimate;
   state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
-  state_.contact = make_contact(spec_, state_);
-  schedule_loads(state_, spec_);
-  apply_initial_motion(state_, spec_, model_info(spec_.model).uses_rotation);
+  finish_set_up(state_, spec_);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
   energy_floor_ = energy_balance_floor(state_.particles, spec_.particle_volume());
   if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);

@@ -1,0 +1,254 @@
+#include "src/solver/part_setup.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <stdexcept>
+
+#include "kernels/model_registry.hpp"
+#include "neighbor/bond_search.hpp"
+#include "src/core/ordered_sum.hpp"
+#include "src/solver/initial_motion.hpp"
+#include "src/solver/setup.hpp"
+
+namespace mpsolid {
+
+bool part_set_up_covers(const CaseSpec& spec) {
+  if (spec.contact.enabled || spec.gas.enabled) return false;
+  return std::none_of(spec.loads.begin(), spec.loads.end(),
+                      [](const LoadSpec& l) { return l.type == LoadSpec::Type::pressure; });
+}
+
+namespace {
+bool overlaps(Range a, Range b) {
+  return a.begin < b.end && b.begin < a.end;
+}
+bool inside(Range a, Range b) {
+  return a.begin >= b.begin && a.end <= b.end;
+}
+
+// A site the part holds: its global storage index, body and place in the
+// body's fill.
+struct HeldSite {
+  std::size_t global, body, k;
+  Point3 at;
+};
+
+// The sites of the owned range `mine` and every site within `reach` of
+// their box, in global storage order.
+std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout, Range mine,
+                                 double reach) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 3> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const Range r = layout.range[b];
+    if (!overlaps(r, mine)) continue;
+    visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
+      const std::size_t g = r.begin + k;
+      if (g < mine.begin || g >= mine.end) return;
+      const double c[3] = {at.x, at.y, at.z};
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], c[a]);
+        hi[a] = std::max(hi[a], c[a]);
+      }
+    });
+  }
+  std::vector<HeldSite> out;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const Range r = layout.range[b];
+    visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
+      const std::size_t g = r.begin + k;
+      const double c[3] = {at.x, at.y, at.z};
+      bool near = true;
+      for (int a = 0; a < 3; ++a) near = near && c[a] >= lo[a] - reach && c[a] <= hi[a] + reach;
+      if (near || (g >= mine.begin && g < mine.end)) out.push_back({g, b, k, at});
+    });
+  }
+  std::sort(out.begin(), out.end(),
+            [](const HeldSite& a, const HeldSite& b) { return a.global < b.global; });
+  return out;
+}
+
+// Each elastic body's centroid of its sites, summed as centroid() sums its
+// particles (ordered_sum's chunks from the body's first particle), for the
+// bodies the part holds some of (`held`: each body's held range).
+std::vector<std::array<double, 3>> centroids(const CaseSpec& spec, const BodyLayout& layout,
+                                             const std::vector<Range>& held) {
+  std::vector<std::array<double, 3>> out(spec.bodies.size(), {0.0, 0.0, 0.0});
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    if (spec.bodies[b].kind != Kind::elastic || held[b].empty()) continue;
+    std::array<double, 3> total{}, chunk{};
+    std::size_t in_chunk = 0;
+    const auto add_chunk = [&] {
+      for (int a = 0; a < 3; ++a) total[a] += chunk[a];
+      chunk = {};
+      in_chunk = 0;
+    };
+    visit_body_sites(spec, b, [&](std::size_t, const Point3& at) {
+      chunk[0] += at.x;
+      chunk[1] += at.y;
+      chunk[2] += at.z;
+      if (++in_chunk == kSumChunk) add_chunk();
+    });
+    if (in_chunk > 0) add_chunk();
+    const auto n = static_cast<double>(layout.range[b].size());
+    out[b] = {total[0] / n, total[1] / n, spec.dimension == 3 ? total[2] / n : 0.0};
+  }
+  return out;
+}
+
+// Each probe's particle (global storage index): the nearest site to its
+// point, the lowest id on a tie, as set_up finds it.
+std::vector<std::size_t> probe_particles(const CaseSpec& spec, const BodyLayout& layout) {
+  std::vector<std::size_t> out;
+  for (const ProbeSpec& probe : spec.probes) {
+    std::size_t best = 0, best_id = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+      visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
+        const double dx = at.x - probe.at[0], dy = at.y - probe.at[1];
+        const double dz = spec.dimension == 3 ? at.z - probe.at[2] : 0.0;
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        const std::size_t id = layout.first_id[b] + k;
+        if (d2 < best_d2 || (d2 == best_d2 && id < best_id)) {
+          best = layout.range[b].begin + k;
+          best_id = id;
+          best_d2 = d2;
+        }
+      });
+    out.push_back(best);
+  }
+  return out;
+}
+
+// A rigid body another rank owns whose particles this part holds as ghosts:
+// they move with it from the start (set_rigid_motion places them), so the
+// body is made whole on the side, set moving, and its held particles copied.
+void place_ghost_rigid_body(const CaseSpec& spec, const BodyLayout& layout, std::size_t b,
+                            Range held, bool with_rotation, ParticleStore& p) {
+  const BodySpec& body = spec.bodies[b];
+  ParticleStore whole;
+  whole.dimension = spec.dimension;
+  whole.resize(layout.range[b].size());
+  visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
+    place_particle(whole, k, spec, b, at, layout.first_id[b] + k);
+  });
+  whole.set_kind_ranges();
+  RigidBody rigid = make_rigid_body(whole, body.name, whole.all());
+  rigid.motion = body.motion;
+  set_rigid_motion(whole, rigid, body.velocity, body.spin, with_rotation);
+  for (std::size_t w = held.begin; w < held.end; ++w) {
+    const auto k = static_cast<std::size_t>(p.id[w]) - layout.first_id[b];
+    for_each_particle_member([&](const auto& info, auto member) {
+      if (info.present_in(p.dimension)) (p.*member)[w] = (whole.*member)[k];
+    });
+  }
+}
+
+std::invalid_argument split(const std::string& what, const std::string& name) {
+  return std::invalid_argument(what + " '" + name +
+                               "' is split between ranks: not supported yet (docs/mpi.md)");
+}
+}  // namespace
+
+LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
+  if (!part_set_up_covers(spec))
+    throw std::logic_error("set_up_part: a case with contact, a gas or a pressure load");
+  const BodyLayout layout = body_layout(spec);
+  const Range mine = d.owned(rank);
+  const BondGeometry geometry = case_bond_geometry(spec);
+  // A bond joins sites closer than re: every partner of an owned site lies
+  // within re of the owned sites' box.
+  const std::vector<HeldSite> sites =
+      held_sites(spec, layout, mine, geometry.re * (1.0 + 1e-9) + 1e-9 * spec.l0);
+
+  // The held sites as a state of their own, in global order ("window"
+  // indices), set up as set_up sets the whole.
+  SolverState s;
+  ParticleStore& p = s.particles;
+  p.dimension = spec.dimension;
+  p.resize(sites.size());
+  std::vector<std::uint32_t> global_of(sites.size());
+  for (std::size_t w = 0; w < sites.size(); ++w) {
+    const HeldSite& h = sites[w];
+    place_particle(p, w, spec, h.body, h.at, layout.first_id[h.body] + h.k);
+    global_of[w] = static_cast<std::uint32_t>(h.global);
+  }
+  p.set_kind_ranges();
+  s.bonds = build_bonds(p, geometry);
+  const auto window_index = [&](std::size_t g) {
+    return static_cast<std::size_t>(std::lower_bound(global_of.begin(), global_of.end(), g) -
+                                    global_of.begin());
+  };
+  const auto window_range = [&](Range r) {
+    return Range{window_index(r.begin), window_index(r.end)};
+  };
+  s.body_ranges.resize(spec.bodies.size());
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    s.body_ranges[b] = window_range(layout.range[b]);
+
+  // Rigid bodies and loaded bodies this rank owns, whole (set_up's order).
+  for (const std::size_t b : layout.order) {
+    const BodySpec& body = spec.bodies[b];
+    if (body.kind != Kind::rigid || !overlaps(layout.range[b], mine)) continue;
+    if (!inside(layout.range[b], mine)) throw split("rigid body", body.name);
+    s.rigid_bodies.push_back(make_rigid_body(p, body.name, s.body_ranges[b]));
+    s.rigid_bodies.back().motion = body.motion;
+  }
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].hold != Hold::none && !s.body_ranges[b].empty())
+      s.holds.push_back({s.body_ranges[b], spec.bodies[b].hold == Hold::x,
+                         spec.bodies[b].hold == Hold::y, spec.bodies[b].hold == Hold::z});
+  // Every load is made (schedule_loads reads them in the case's order);
+  // those of other ranks' bodies are dropped after.
+  std::vector<bool> owned_load;
+  for (const LoadSpec& l : spec.loads) {
+    const auto b = static_cast<std::size_t>(l.body);
+    StepLoad& load = s.loads.emplace_back();
+    load.name = l.name;
+    owned_load.push_back(overlaps(layout.range[b], mine));
+    if (!owned_load.back()) continue;
+    if (!inside(layout.range[b], mine)) throw split("the body of load", l.name);
+    load.range = s.body_ranges[b];
+    load.history = l.history;
+    load.start = l.start;
+    if (l.type == LoadSpec::Type::step) {
+      load.fx = l.force[0];
+      load.fy = l.force[1];
+      load.fz = l.force[2];
+    } else {
+      // m a on each particle: the body's mass times a, shared equally.
+      const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
+      load.fx = mass * l.acceleration[0];
+      load.fy = mass * l.acceleration[1];
+      load.fz = mass * l.acceleration[2];
+    }
+  }
+  schedule_loads(s, spec);
+  for (std::size_t k = s.loads.size(); k-- > 0;)
+    if (!owned_load[k]) s.loads.erase(s.loads.begin() + static_cast<long>(k));
+  const std::vector<std::array<double, 3>> centres = centroids(spec, layout, s.body_ranges);
+  const bool with_rotation = model_info(spec.model).uses_rotation;
+  apply_initial_motion(s, spec, with_rotation, &centres);
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].kind == Kind::rigid && !s.body_ranges[b].empty() &&
+        !inside(layout.range[b], mine))
+      place_ghost_rigid_body(spec, layout, b, s.body_ranges[b], with_rotation, p);
+
+  // The part in window indices (the cut there: each rank's first held
+  // particle), then in global ones.
+  Decomposition window;
+  for (const std::size_t start : d.starts) window.starts.push_back(window_index(start));
+  LocalPart part = local_part(s, window, rank);
+  part.decomposition = d;
+  for (std::uint32_t& g : part.layout.global_of) g = global_of[g];
+  part.layout.owned_global = mine;
+  part.moving_begin = 0;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].kind == Kind::wall) part.moving_begin += layout.range[b].size();
+  part.body_ranges = layout.range;
+  part.probes = probe_particles(spec, layout);
+  return part;
+}
+
+}  // namespace mpsolid

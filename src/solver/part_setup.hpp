@@ -1,0 +1,24 @@
+#pragma once
+// A rank's part of a case set up from the case alone (docs/mpi.md), without
+// the whole state: the lattice sites of its storage range and those within a
+// bond's reach of them, their bonds, its halo plan, its rigid bodies, loads,
+// holds and probes, and the initial motion. It is the part local_part cuts
+// from the whole set-up state (src/distributed/part_message.hpp), bit for
+// bit. A rank visits every site of the case (O(N) time, a few passes of the
+// lattice fill) but keeps only its own and its neighbours' (O(N / R + halo)
+// memory).
+#include "src/case/case_spec.hpp"
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/part_message.hpp"
+
+namespace mpsolid {
+
+// Whether set_up_part covers the case: no contact, gas or pressure load
+// (their candidates, outlines and surface nodes come from the whole state).
+bool part_set_up_covers(const CaseSpec& spec);
+
+// Rank `rank`'s part of the case (its dt fixed) cut by `d`. Throws
+// std::invalid_argument for a rigid or loaded body the cut splits.
+LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank);
+
+}  // namespace mpsolid
