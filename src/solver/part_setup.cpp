@@ -197,32 +197,16 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
   }
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none && !s.body_ranges[b].empty())
-      s.holds.push_back({s.body_ranges[b], spec.bodies[b].hold == Hold::x,
-                         spec.bodies[b].hold == Hold::y, spec.bodies[b].hold == Hold::z});
+      s.holds.push_back(body_hold(spec.bodies[b], s.body_ranges[b]));
   // Every load is made (schedule_loads reads them in the case's order);
   // those of other ranks' bodies are dropped after.
   std::vector<bool> owned_load;
   for (const LoadSpec& l : spec.loads) {
     const auto b = static_cast<std::size_t>(l.body);
-    StepLoad& load = s.loads.emplace_back();
-    load.name = l.name;
     owned_load.push_back(overlaps(layout.range[b], mine));
-    if (!owned_load.back()) continue;
-    if (!inside(layout.range[b], mine)) throw split("the body of load", l.name);
-    load.range = s.body_ranges[b];
-    load.history = l.history;
-    load.start = l.start;
-    if (l.type == LoadSpec::Type::step) {
-      load.fx = l.force[0];
-      load.fy = l.force[1];
-      load.fz = l.force[2];
-    } else {
-      // m a on each particle: the body's mass times a, shared equally.
-      const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
-      load.fx = mass * l.acceleration[0];
-      load.fy = mass * l.acceleration[1];
-      load.fz = mass * l.acceleration[2];
-    }
+    if (owned_load.back() && !inside(layout.range[b], mine))
+      throw split("the body of load", l.name);
+    s.loads.push_back(owned_load.back() ? body_load(l, s.body_ranges[b], p) : StepLoad{});
   }
   schedule_loads(s, spec);
   for (std::size_t k = s.loads.size(); k-- > 0;)

@@ -85,6 +85,30 @@ void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::
   p.mu[i] = mat.mu();
 }
 
+StepLoad body_load(const LoadSpec& l, Range range, const ParticleStore& p) {
+  StepLoad load;
+  load.name = l.name;
+  load.range = range;
+  load.history = l.history;
+  load.start = l.start;
+  if (l.type == LoadSpec::Type::step) {
+    load.fx = l.force[0];
+    load.fy = l.force[1];
+    load.fz = l.force[2];
+  } else if (l.type != LoadSpec::Type::pressure) {
+    // m a on each particle: the body's mass times a, shared equally.
+    const double mass = static_cast<double>(range.size()) / p.inv_mass[range.begin];
+    load.fx = mass * l.acceleration[0];
+    load.fy = mass * l.acceleration[1];
+    load.fz = mass * l.acceleration[2];
+  }
+  return load;
+}
+
+HeldRange body_hold(const BodySpec& body, Range range) {
+  return {range, body.hold == Hold::x, body.hold == Hold::y, body.hold == Hold::z};
+}
+
 BondGeometry case_bond_geometry(const CaseSpec& spec) {
   return spec.dimension == 3 ? bond_geometry_3d(spec.l0) : bond_geometry(spec.l0, spec.depth);
 }
@@ -121,8 +145,7 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none)
-      s.holds.push_back({s.body_ranges[b], spec.bodies[b].hold == Hold::x,
-                         spec.bodies[b].hold == Hold::y, spec.bodies[b].hold == Hold::z});
+      s.holds.push_back(body_hold(spec.bodies[b], s.body_ranges[b]));
 
   // Probes: the nearest particle to the point, lowest id on a tie.
   for (const ProbeSpec& probe : spec.probes) {
@@ -141,16 +164,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   }
 
   for (const LoadSpec& l : spec.loads) {
-    StepLoad load;
-    load.name = l.name;
-    load.range = s.body_ranges[static_cast<std::size_t>(l.body)];
-    load.history = l.history;
-    load.start = l.start;
-    if (l.type == LoadSpec::Type::step) {
-      load.fx = l.force[0];
-      load.fy = l.force[1];
-      load.fz = l.force[2];
-    } else if (l.type == LoadSpec::Type::pressure && spec.dimension == 3) {
+    StepLoad load = body_load(l, s.body_ranges[static_cast<std::size_t>(l.body)], p);
+    if (l.type == LoadSpec::Type::pressure && spec.dimension == 3) {
       const Shape3& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape3;
       const Surface3 surface = build_surface3(shape, fill_shape3(shape, spec.l0), spec.l0);
       load.surface = make_pressure_surface3(surface, select_quads(surface, l.surface),
@@ -160,12 +175,6 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
       const Surface surface = build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
       load.surface = make_pressure_surface(surface, select_segments(surface, l.surface),
                                            load.range.begin, l.pressure, spec.depth);
-    } else {
-      // m a on each particle: the body's mass times a, shared equally.
-      const double mass = static_cast<double>(load.range.size()) / p.inv_mass[load.range.begin];
-      load.fx = mass * l.acceleration[0];
-      load.fy = mass * l.acceleration[1];
-      load.fz = mass * l.acceleration[2];
     }
     s.loads.push_back(load);
   }

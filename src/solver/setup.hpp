@@ -28,6 +28,12 @@ BodyLayout body_layout(const CaseSpec& spec);
 // (k from 0; z = 0 in the plane).
 void visit_body_sites(const CaseSpec& spec, std::size_t b,
                       const std::function<void(std::size_t, const Point3&)>& site);
+// A load's switch-on, history and force (a step's, or its acceleration times
+// the body's mass) on the particles `range` of `p`; a pressure's surface is
+// set up apart.
+StepLoad body_load(const LoadSpec& l, Range range, const ParticleStore& p);
+// A held body's hold over the particles `range`.
+HeldRange body_hold(const BodySpec& body, Range range);
 // The bond geometry of the case's lattice (in the plane, over its depth).
 BondGeometry case_bond_geometry(const CaseSpec& spec);
 // Particle i of `p` as set-up makes it: a site of body b with its id.
