@@ -12,7 +12,7 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_mpsolid, m) {
   using namespace mpsolid;
-  m.doc() = "mpsolid: elastic MPS solver (2D plane strain)";
+  m.doc() = "mpsolid: elastic MPS solver (in plane strain or in space)";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   python::bind_case(m);
   python::bind_simulation(m);

@@ -7,7 +7,8 @@
 
 namespace mpsolid {
 
-// Spatial dimension: the solver is 2D plane strain (MODEL.md section 1).
+// The plane's dimension, which the plane kernels use (plane strain, MODEL.md
+// section 1; in space the kernels take the store's dimension, 3).
 inline constexpr int kDim = 2;
 
 // The z component of a x b for in-plane vectors (torques, angular momenta).
