@@ -2,12 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
-#include <cmath>
-#include <initializer_list>
+#include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "src/io/atomic_file.hpp"

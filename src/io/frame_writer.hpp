@@ -10,7 +10,6 @@
 #include "src/core/frame_rows.hpp"
 #include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
-#include "src/core/surface.hpp"
 #include "src/io/xdmf_writer.hpp"
 
 namespace mpsolid {
