@@ -26,7 +26,8 @@ void add_stepping_options(CLI::App& command, SteppingOptions& o, const std::stri
 }  // namespace
 
 std::variant<CommandLine, int> parse_command_line(int argc, char** argv) {
-  CLI::App app{"mpsolid: elastic MPS solver for shock-loaded elastic bodies (in plane strain or in space)"};
+  CLI::App app{
+      "mpsolid: elastic MPS solver for shock-loaded elastic bodies (in plane strain or in space)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text());
 
