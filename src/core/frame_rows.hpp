@@ -93,12 +93,9 @@ struct RowPlacement {
   std::vector<std::uint64_t> offsets;  // one per dataset, in their order
 };
 // What the ranks report of a placement: a checkpoint's particle arrays'
-// hashes (placed_array_hash: each array's terms summed over the ranks), the
-// bytes written and the slowest rank's seconds.
+// hashes (placed_array_hash: each array's terms summed over the ranks).
 struct PlacedRows {
   std::vector<std::uint64_t> array_hashes;
-  double bytes = 0;
-  double seconds = 0;
 };
 // Writes a placement's rows of every particle (over MPI ranks, each rank its
 // own) and reports them.

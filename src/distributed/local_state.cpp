@@ -7,11 +7,16 @@
 
 namespace mpsolid {
 
-std::size_t LocalLayout::local_of(std::uint32_t global) const {
+std::int64_t LocalLayout::find(std::size_t global) const {
   const auto at = std::lower_bound(global_of.begin(), global_of.end(), global);
-  if (at == global_of.end() || *at != global)
-    throw std::out_of_range("local_of: a particle this rank does not hold");
-  return static_cast<std::size_t>(at - global_of.begin());
+  if (at == global_of.end() || *at != global) return -1;
+  return at - global_of.begin();
+}
+
+std::size_t LocalLayout::local_of(std::uint32_t global) const {
+  const std::int64_t at = find(global);
+  if (at < 0) throw std::out_of_range("local_of: a particle this rank does not hold");
+  return static_cast<std::size_t>(at);
 }
 
 LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
@@ -121,10 +126,8 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
     local.surface = local_pressure_surface(
         load.surface,
         [&](std::uint32_t g) {
-          const auto at = std::lower_bound(layout.global_of.begin(), layout.global_of.end(), g);
-          return at != layout.global_of.end() && *at == g
-                     ? static_cast<std::uint32_t>(at - layout.global_of.begin())
-                     : PressureSurface::kElsewhere;
+          const std::int64_t at = layout.find(g);
+          return at >= 0 ? static_cast<std::uint32_t>(at) : PressureSurface::kElsewhere;
         },
         [&](std::uint32_t i) { return i >= layout.owned.begin && i < layout.owned.end; });
     s.loads.push_back(std::move(local));

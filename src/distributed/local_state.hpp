@@ -30,6 +30,8 @@ struct LocalLayout {
   }
   // The local index of a global storage index this rank holds.
   std::size_t local_of(std::uint32_t global) const;
+  // The same, or -1 when this rank does not hold it.
+  std::int64_t find(std::size_t global) const;
 };
 
 // Owned particles and ghosts, merged in global order, with the particles of

@@ -205,17 +205,16 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const Ga
   end_frame(group, state.step, spec, gas);
 }
 
-double FrameWriter::write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
-                                 const RowPlacer& placer) {
+void FrameWriter::write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
+                               const RowPlacer& placer) {
   if (compression_ > 0) throw std::logic_error("write_placed: compressed frames are not placed");
   const h5::Group group = begin_frame(step, spec);
   RowPlacement placement{
       RowPlacement::Content::frame, std::filesystem::absolute(staging_path(path_)).string(), {}};
   for (const RowLayout& field : frame_row_layout(dimension_))
     placement.offsets.push_back(reserve_rows(group, field, particles_));
-  const PlacedRows placed = placer(placement);
+  placer(placement);
   end_frame(group, step, spec, gas);
-  return placed.seconds;
 }
 
 std::uintmax_t FrameWriter::bytes_written() const {

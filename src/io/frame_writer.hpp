@@ -38,9 +38,8 @@ class FrameWriter {
   void write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas = {});
   // The next frame at `step` with its particles' rows written in place by
   // `placer` (over MPI ranks, every rank its own; uncompressed files only).
-  // Returns the slowest rank's seconds writing its rows.
-  double write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
-                      const RowPlacer& placer);
+  void write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
+                    const RowPlacer& placer);
   // Publishes a copy of the file as it is now (and the sidecar); writing goes on.
   void publish_copy();
   // Closes the file and renames it to `path`; writes the sidecar.

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <optional>
 #include <sstream>
@@ -39,14 +38,6 @@ RowPlacement decode_placement(const std::string& text) {
 }
 
 namespace {
-// The index here of a global storage index among `layout`'s particles
-// (-1: not held).
-std::int64_t held(const LocalLayout& layout, std::size_t global) {
-  const auto at = std::lower_bound(layout.global_of.begin(), layout.global_of.end(), global);
-  if (at == layout.global_of.end() || *at != global) return -1;
-  return at - layout.global_of.begin();
-}
-
 // The frame's surface marks of the part's owned particles.
 SurfaceMarks rank_surface_marks(const RankPart& part, const RankGroup& world,
                                 const std::vector<FrameSurface>& surfaces) {
@@ -55,7 +46,7 @@ SurfaceMarks rank_surface_marks(const RankPart& part, const RankGroup& world,
   if (p.dimension == 3) return space_surface_marks(part.local, layout.owned);
   const Range owned = layout.owned_global;
   const auto owns = [&](std::size_t g) { return g >= owned.begin && g < owned.end; };
-  const auto local_of = [&](std::size_t g) { return held(layout, g); };
+  const auto local_of = [&](std::size_t g) { return layout.find(g); };
   NodePositions nodes = surface_nodes(surfaces, p.x.data(), p.y.data(), local_of, owns);
   // Each rank's nodes (surface, node, x, y) to every rank.
   std::vector<double> mine;
@@ -88,7 +79,6 @@ std::uint64_t read_hash(const std::vector<double>& in, std::size_t at) {
 void append_rank_rows(RankPart& part, const RankGroup& world,
                       const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
                       std::vector<double>& out) {
-  const auto start = std::chrono::steady_clock::now();
   const ParticleStore& p = part.local.particles;
   const bool frame = placement.content == RowPlacement::Content::frame;
   std::optional<SurfaceMarks> marks;
@@ -96,7 +86,6 @@ void append_rank_rows(RankPart& part, const RankGroup& world,
   const IdRuns runs = id_runs(p.id, part.layout.owned);
   std::vector<std::uint64_t> hashes;
   int error = 0;
-  double bytes = 0;
   try {
     PlacedFile file(placement.file);
     if (frame) {
@@ -123,24 +112,18 @@ void append_rank_rows(RankPart& part, const RankGroup& world,
       }
     }
     file.close();
-    bytes = file.bytes();
   } catch (const PlacedRowsError& e) {
     error = e.error_number != 0 ? e.error_number : EIO;
   }
-  out.insert(out.end(),
-             {static_cast<double>(error), bytes,
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-              static_cast<double>(hashes.size())});
+  out.insert(out.end(), {static_cast<double>(error), static_cast<double>(hashes.size())});
   for (const std::uint64_t h : hashes) append_hash(h, out);
 }
 
 std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int rank,
                            const RowPlacement& placement, PlacedRows& total) {
   const int error = static_cast<int>(in.at(at));
-  total.bytes += in.at(at + 1);
-  total.seconds = std::max(total.seconds, in.at(at + 2));
-  const auto count = static_cast<std::size_t>(in.at(at + 3));
-  at += 4;
+  const auto count = static_cast<std::size_t>(in.at(at + 1));
+  at += 2;
   if (total.array_hashes.empty()) total.array_hashes.assign(count, 0);
   for (std::size_t a = 0; a < count; ++a, at += 2) total.array_hashes.at(a) += read_hash(in, at);
   if (error == 0) return "";

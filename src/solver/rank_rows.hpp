@@ -22,8 +22,8 @@ RowPlacement decode_placement(const std::string& text);
 
 // Writes the part's owned particles' rows of `placement` (a frame's after
 // the fields round) and appends what rank 0 reads: the system's error
-// number (0: written), the bytes, the seconds, a checkpoint's arrays' hash
-// terms. Every rank must call it (a plane frame's nodes are gathered).
+// number (0: written) and a checkpoint's arrays' hash terms. Every rank must call it (a plane
+// frame's nodes are gathered).
 void append_rank_rows(RankPart& part, const RankGroup& world,
                       const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
                       std::vector<double>& out);
