@@ -390,10 +390,8 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   // Before the first step, so a dt that cannot run is named with its fix
   // (its estimate is set-up work).
   std::string warning;
-  {
-    auto t = sim.timers().time(Phase::setup);
-    warning = fixed_time_step_warning(sim.spec(), sim.state());
-  }
+  if (!sim.spec().dt_auto)
+    warning = fixed_time_step_warning(sim.spec(), sim.estimate_stable_step());
   if (!warning.empty()) fmt::print(stderr, "mpsolid: warning: {}\n", warning);
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();

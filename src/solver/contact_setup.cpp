@@ -88,18 +88,23 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
   return c;
 }
 
-double contact_omega_squared(const CaseSpec& spec, const SolverState& s) {
+double contact_omega_squared(const CaseSpec& spec, double largest_inv_mass) {
   if (!spec.contact.enabled) return 0;
-  const ParticleStore& p = s.particles;
-  double largest_inv_mass = 0;
-  for (const int b : spec.contact.bodies) {
-    const Range r = s.body_ranges[static_cast<std::size_t>(b)];
-    if (spec.bodies[static_cast<std::size_t>(b)].kind == Kind::wall) continue;
-    for (std::size_t i = r.begin; i < r.end; ++i)
-      largest_inv_mass = std::max(largest_inv_mass, p.inv_mass[i]);
-  }
   return 2.0 * most_sites_near_a_point(spec.dimension, spec.contact.distance) *
          pair_stiffness(spec) * largest_inv_mass;
+}
+
+double largest_contact_inv_mass(const CaseSpec& spec, const std::vector<Range>& body_ranges,
+                                const ParticleStore& p, Range held, std::size_t first) {
+  if (!spec.contact.enabled) return 0;
+  double largest = 0;
+  for (const int b : spec.contact.bodies) {
+    if (spec.bodies[static_cast<std::size_t>(b)].kind == Kind::wall) continue;
+    const Range r = body_ranges[static_cast<std::size_t>(b)];
+    for (std::size_t g = std::max(r.begin, held.begin); g < std::min(r.end, held.end); ++g)
+      largest = std::max(largest, p.inv_mass[first + (g - held.begin)]);
+  }
+  return largest;
 }
 
 }  // namespace mpsolid

@@ -3,6 +3,7 @@
 // their groups, the parameters in SI units, and the contact term of the
 // stable-step bound.
 #include <algorithm>
+#include <vector>
 
 #include "src/case/case_spec.hpp"
 #include "src/core/contact_state.hpp"
@@ -20,8 +21,15 @@ ContactState make_contact(const CaseSpec& spec, const SolverState& s);
 // 2 z k / m, with z the most lattice sites closer than d to any point and m
 // the lightest candidate that moves (Gershgorin's bound on the pair
 // stiffness, whose tangential part stays below k while pairs are farther
-// apart than d / 2, which the interpenetration check keeps). 0 without contact.
-double contact_omega_squared(const CaseSpec& spec, const SolverState& s);
+// apart than d / 2, which the interpenetration check keeps), from the
+// largest inverse mass among the candidates' bodies. 0 without contact.
+double contact_omega_squared(const CaseSpec& spec, double largest_inv_mass);
+// That inverse mass among the particles `held` (global storage indices,
+// the first at index `first` of `p`) of the contact's moving bodies (their
+// global storage ranges `body_ranges`); the largest over every part is the
+// whole state's.
+double largest_contact_inv_mass(const CaseSpec& spec, const std::vector<Range>& body_ranges,
+                                const ParticleStore& p, Range held, std::size_t first);
 
 // How far the closest-pair diagnostic looks: d + skin, and at least 3 l0.
 // (Within a body, surface pairs sqrt 5 l0 apart at rest are not bonded: the

@@ -1,9 +1,11 @@
 #include "src/solver/one_rank_stepper.hpp"
 
+#include <stdexcept>
 #include <variant>
 
 #include "src/core/parallel.hpp"
 #include "src/solver/step.hpp"
+#include "src/solver/time_step_choice.hpp"
 
 namespace mpsolid {
 
@@ -12,6 +14,17 @@ OneRankStepper::OneRankStepper(const CaseSpec& spec, const SolverState& state)
       model_(make_model(spec.model, state.particles, state.bonds, spec.model_options)) {}
 
 OneRankStepper::~OneRankStepper() = default;
+
+StableStepEstimate OneRankStepper::estimate_stable_step(SolverState& state, const CaseSpec& spec) {
+  bring_to_rank_zero(state);
+  return estimate_case_stable_step(spec, state);
+}
+
+void OneRankStepper::set_time_step(const CaseSpec& spec) {
+  // Parts are made with the step they run (none yet at set-up).
+  if (parts_) throw std::logic_error("set_time_step: after the threads' parts were made");
+  spec_ = spec;
+}
 
 void OneRankStepper::advance(SolverState& state, std::int64_t steps, PhaseTimers& timers) {
   const int threads = thread_count();

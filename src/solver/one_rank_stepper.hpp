@@ -21,6 +21,8 @@ class OneRankStepper final : public Stepper {
   OneRankStepper(const CaseSpec& spec, const SolverState& state);
   ~OneRankStepper() override;
 
+  StableStepEstimate estimate_stable_step(SolverState& state, const CaseSpec& spec) override;
+  void set_time_step(const CaseSpec& spec) override;
   // Steps on thread_count() threads: the parts for that count (made when
   // the count changes), or the whole state with one thread.
   void advance(SolverState& state, std::int64_t steps, PhaseTimers& timers) override;

@@ -198,19 +198,14 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none && !s.body_ranges[b].empty())
       s.holds.push_back(body_hold(spec.bodies[b], s.body_ranges[b]));
-  // Every load is made (schedule_loads reads them in the case's order);
-  // those of other ranks' bodies are dropped after.
-  std::vector<bool> owned_load;
+  // The loads of bodies this rank owns (their first steps wait for dt:
+  // schedule_loads).
   for (const LoadSpec& l : spec.loads) {
     const auto b = static_cast<std::size_t>(l.body);
-    owned_load.push_back(overlaps(layout.range[b], mine));
-    if (owned_load.back() && !inside(layout.range[b], mine))
-      throw split("the body of load", l.name);
-    s.loads.push_back(owned_load.back() ? body_load(l, s.body_ranges[b], p) : StepLoad{});
+    if (!overlaps(layout.range[b], mine)) continue;
+    if (!inside(layout.range[b], mine)) throw split("the body of load", l.name);
+    s.loads.push_back(body_load(l, s.body_ranges[b], p));
   }
-  schedule_loads(s, spec);
-  for (std::size_t k = s.loads.size(); k-- > 0;)
-    if (!owned_load[k]) s.loads.erase(s.loads.begin() + static_cast<long>(k));
   const std::vector<std::array<double, 3>> centres = centroids(spec, layout, s.body_ranges);
   const bool with_rotation = model_info(spec.model).uses_rotation;
   apply_initial_motion(s, spec, with_rotation, &centres);

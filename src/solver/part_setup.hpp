@@ -17,8 +17,9 @@ namespace mpsolid {
 // (their candidates, outlines and surface nodes come from the whole state).
 bool part_set_up_covers(const CaseSpec& spec);
 
-// Rank `rank`'s part of the case (its dt fixed) cut by `d`. Throws
-// std::invalid_argument for a rigid or loaded body the cut splits.
+// Rank `rank`'s part of the case cut by `d`, its loads not yet scheduled
+// (schedule_loads, once dt is fixed). Throws std::invalid_argument for a
+// rigid or loaded body the cut splits.
 LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank);
 
 }  // namespace mpsolid

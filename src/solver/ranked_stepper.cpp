@@ -12,18 +12,19 @@
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/rank_rows.hpp"
+#include "src/solver/setup.hpp"
 #include "src/solver/simulation.hpp"
+#include "src/solver/time_step_choice.hpp"
 
 namespace mpsolid {
 
 struct RankStepping {
   RankPart part;
-  double dt = 0;
+  CaseSpec spec;  // its dt once rank 0 gives it (set_time_step)
   IntegrityLimits limits;
+  StableStepEstimate estimate;  // of the last estimate's round
   // A frame's surfaces in the plane, made from the bodies' shapes at the
   // first frame this rank writes.
-  std::vector<std::pair<Kind, Shape>> shapes;
-  double l0 = 0;
   std::vector<FrameSurface> surfaces;
   bool surfaces_made = false;
   RowPlacement placement;              // of the batch that writes rows
@@ -79,12 +80,10 @@ namespace {
 // A part from rank 0 ready to step.
 std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) {
   auto parts = std::make_unique<RankStepping>();
-  parts->dt = spec.dt;
+  parts->spec = spec;
   parts->limits = {spec.stability.min_jacobian};
   parts->part = make_rank_part(spec, std::move(local));
   parts->rebuilds_reported = parts->part.local.contact.rebuilds;
-  for (const BodySpec& b : spec.bodies) parts->shapes.emplace_back(b.kind, b.shape);
-  parts->l0 = spec.l0;
   return parts;
 }
 
@@ -101,8 +100,17 @@ void take_slice(RankPart& p, const std::vector<double>& slice) {
 std::vector<double> step_and_report(RankStepping& parts, const Communicator& world,
                                     std::int64_t steps, Exchange how) {
   RankPart& p = parts.part;
+  if (how.time_step) {
+    // Rank 0's dt (the others send nothing).
+    parts.spec.dt = world
+                        .all_gather(world.rank() == 0 ? std::vector<double>{parts.spec.dt}
+                                                      : std::vector<double>{})
+                        .at(0);
+    schedule_loads(p.local, parts.spec);
+  }
+  if (how.estimate) parts.estimate = estimate_part_stable_step(parts.spec, p, world);
   if (how.restore_good) take_slice(p, parts.good);
-  if (steps > 0) advance_rank_part(p, world, parts.dt, steps);
+  if (steps > 0) advance_rank_part(p, world, parts.spec.dt, steps);
   if (how.keep_good) {
     parts.good.assign(1, static_cast<double>(p.local.step));
     StateSlice::append(p.local, p.layout.owned, parts.good);
@@ -119,8 +127,8 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
     const bool frame = parts.placement.content == RowPlacement::Content::frame;
     if (frame && p.local.particles.dimension != 3 && !parts.surfaces_made) {
       std::vector<std::pair<Kind, const Shape*>> bodies;
-      for (const auto& [kind, shape] : parts.shapes) bodies.emplace_back(kind, &shape);
-      parts.surfaces = frame_surfaces(bodies, p.body_ranges, parts.l0);
+      for (const BodySpec& b : parts.spec.bodies) bodies.emplace_back(b.kind, &b.shape);
+      parts.surfaces = frame_surfaces(bodies, p.body_ranges, parts.spec.l0);
       parts.surfaces_made = true;
     }
     append_rank_rows(p, world, parts.surfaces, parts.placement, back);
@@ -130,19 +138,21 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 256;
+constexpr std::int64_t kExchangeFlags = 1024;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
          (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
-         (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0);
+         (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0) +
+         (how.estimate ? 256 : 0) + (how.time_step ? 512 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
 }
 Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0,  (flags & 2) != 0,  (flags & 4) != 0,  (flags & 8) != 0,
-          (flags & 16) != 0, (flags & 32) != 0, (flags & 64) != 0, (flags & 128) != 0};
+  return {(flags & 1) != 0,   (flags & 2) != 0,  (flags & 4) != 0,  (flags & 8) != 0,
+          (flags & 16) != 0,  (flags & 32) != 0, (flags & 64) != 0, (flags & 128) != 0,
+          (flags & 256) != 0, (flags & 512) != 0};
 }
 }  // namespace
 
@@ -207,6 +217,19 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
 }
 
 RankedStepper::~RankedStepper() = default;
+
+StableStepEstimate RankedStepper::estimate_stable_step(SolverState& global, const CaseSpec& spec) {
+  parts_->spec = spec;
+  exchange(global, 0, {.send_slices = ranks_behind_, .estimate = true});
+  ranks_behind_ = false;
+  return parts_->estimate;
+}
+
+void RankedStepper::set_time_step(const CaseSpec& spec) {
+  parts_->spec = spec;
+  SolverState none;  // no slice moves
+  exchange(none, 0, {.time_step = true});
+}
 
 void RankedStepper::advance(SolverState& global, std::int64_t steps, PhaseTimers&) {
   exchange(global, steps, {.send_slices = ranks_behind_});

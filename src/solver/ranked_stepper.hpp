@@ -41,6 +41,8 @@ struct Exchange {
   bool restore_good = false;  // before the steps: each rank puts it back
   bool write_rows = false;    // each rank writes its rows of a placement (rank_rows.hpp)
   bool report = false;        // each rank's times and memory, without its slice
+  bool estimate = false;      // every rank estimates the stable step on its part
+  bool time_step = false;     // before the steps: rank 0 gives every rank dt
   // Whether each rank sends rank 0 a message after the steps.
   bool answered() const { return bring_back || fields || write_rows || report; }
 };
@@ -76,13 +78,18 @@ struct RankStepping;
 // Rank 0's stepper over the ranks.
 class RankedStepper final : public Stepper {
  public:
-  // Sends the followers the case and cuts the set-up state `global`, sending
-  // every other rank its part and keeping its own. Throws InputError when
-  // the case cannot be decomposed (every follower is told, and waits to be
-  // released).
+  // Sends the followers the case (its step maybe still to be chosen:
+  // set_time_step) and cuts the set-up state `global`, sending every other
+  // rank its part (or the cut, for a follower to set its part up) and
+  // keeping its own. Throws InputError when the case cannot be decomposed
+  // (every follower is told, and waits to be released).
   RankedStepper(const CaseSpec& spec, const SolverState& global, Followers& followers);
   ~RankedStepper() override;
 
+  // Every rank estimates on its own part; each gets the one-process bits.
+  StableStepEstimate estimate_stable_step(SolverState& global, const CaseSpec& spec) override;
+  // Every rank steps with dt and schedules its part's loads.
+  void set_time_step(const CaseSpec& spec) override;
   // Every rank steps its own particles; they stay there until rank 0 reads
   // the state (bring_to_rank_zero, refresh_fields). `global.step` follows.
   void advance(SolverState& global, std::int64_t steps, PhaseTimers& timers) override;

@@ -184,7 +184,6 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
 void finish_set_up(SolverState& s, const CaseSpec& spec) {
   s.contact = make_contact(spec, s);
-  schedule_loads(s, spec);
   apply_initial_motion(s, spec, model_info(spec.model).uses_rotation);
 }
 
@@ -193,8 +192,7 @@ void schedule_loads(SolverState& s, const CaseSpec& spec) {
   const auto first_step_at = [&](double t) {
     return static_cast<std::int64_t>(std::ceil(t / spec.dt - 1e-9));
   };
-  for (std::size_t k = 0; k < spec.loads.size(); ++k)
-    s.loads[k].first_step = first_step_at(spec.loads[k].start);
+  for (StepLoad& load : s.loads) load.first_step = first_step_at(load.start);
   if (spec.damping.coefficient > 0)
     s.damping = {spec.damping.coefficient, first_step_at(spec.damping.start),
                  first_step_at(spec.damping.end)};

@@ -11,7 +11,7 @@
 namespace mpsolid {
 
 // Particles, bonds, rigid bodies, holds, probes and loads; the loads' first
-// steps are set by schedule_loads from the case's fixed dt.
+// steps are set by schedule_loads once the case's dt is fixed.
 SolverState set_up(const CaseSpec& spec, PhaseTimers& timers);
 
 // Where each body's particles go, from its sites' count alone: its storage
@@ -40,11 +40,12 @@ BondGeometry case_bond_geometry(const CaseSpec& spec);
 void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::size_t b,
                     const Point3& site, std::size_t id);
 
-// Each load's first step k (k dt >= start); spec.dt must be fixed.
+// Each load's first step k (k dt >= its start) and the damping's window;
+// spec.dt must be fixed. A rank's part schedules its own loads likewise.
 void schedule_loads(SolverState& s, const CaseSpec& spec);
 
-// A set-up state made ready to run (spec.dt fixed): contact's candidates,
-// the loads' first steps, the initial motion.
+// A set-up state made ready to run but for its schedule (no dt read):
+// contact's candidates, the initial motion.
 void finish_set_up(SolverState& s, const CaseSpec& spec);
 
 }  // namespace mpsolid

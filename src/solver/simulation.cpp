@@ -28,22 +28,36 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, const SolverState& s
 }
 }  // namespace
 
-Simulation::Simulation(const CaseSpec& spec, Followers* followers) {
+Simulation::Simulation(const CaseSpec& spec, Followers* followers) : spec_(spec) {
   set_flush_subnormals(spec.flush_subnormals);
-  TimeStepChoice choice = fix_time_step(spec, timers_);
-  spec_ = std::move(choice.spec);
-  stable_step_ = choice.estimate;
-  state_ = choice.initial ? std::move(*choice.initial) : set_up(spec_, timers_);
+  // Set-up reads no dt: the state is made, then the stepper (over ranks,
+  // every rank's part), then time.dt = "auto" is chosen by the estimate where
+  // it steps, and only then are the loads scheduled.
+  state_ = set_up(spec_, timers_);
   finish_set_up(state_, spec_);
+  stepper_ = make_stepper(spec_, state_, followers);
+  if (needs_time_step(spec_)) {
+    {
+      auto t = timers_.time(Phase::setup);
+      stable_step_ = stepper_->estimate_stable_step(state_, spec_);
+    }
+    choose_time_step(spec_, stable_step_);
+  }
+  schedule_loads(state_, spec_);
+  stepper_->set_time_step(spec_);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
   energy_floor_ = energy_balance_floor(state_.particles, spec_.particle_volume());
   if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
-  stepper_ = make_stepper(spec_, state_, followers);
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }
 
 Simulation::~Simulation() = default;
+
+StableStepEstimate Simulation::estimate_stable_step() {
+  auto t = timers_.time(Phase::setup);
+  return stepper_->estimate_stable_step(state_, spec_);
+}
 Simulation::Simulation(Simulation&&) noexcept = default;
 Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 

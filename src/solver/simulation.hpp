@@ -13,8 +13,8 @@
 #include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stability.hpp"
+#include "src/core/stable_step_estimate.hpp"
 #include "src/core/timers.hpp"
-#include "src/solver/stable_step.hpp"
 #include "src/solver/stepper.hpp"
 
 namespace mpsolid {
@@ -88,6 +88,9 @@ class Simulation {
   std::size_t bond_count() const { return state_.bonds.entry_count() / 2; }
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
+  // The model's stable-step limit about the current state, estimated where
+  // it steps (set-up time): a given dt's check.
+  StableStepEstimate estimate_stable_step();
   PhaseTimers& timers() { return timers_; }
   const PhaseTimers& timers() const { return timers_; }
   // Over several MPI ranks: each rank's times, halo cost and memory so far;

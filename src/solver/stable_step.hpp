@@ -11,6 +11,13 @@
 // no hand-derived formula can drift from the kernels. Only elastic particles
 // move in the iteration: walls never move, and a rigid body is far heavier
 // than one particle, so its modes are slow.
+//
+// It runs where the step runs (a `Place`, src/solver/step.hpp): on the whole
+// state, or on each rank's part with the ghosts' perturbed positions from
+// the step's own halos. Its norms are ordered sums over the elastic
+// particles (`Sums`: EstimateSums below, or a rank's share of them,
+// src/solver/time_step_choice.cpp), so the estimate is the same bits at any
+// thread and rank count.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,10 +25,24 @@
 
 #include "src/core/half_angles.hpp"
 #include "src/core/integrator.hpp"
+#include "src/core/ordered_sum.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/core/stable_step_estimate.hpp"
+#include "src/solver/step.hpp"
 
 namespace mpsolid {
+
+// The sums of an estimate on the whole state: its elastic particles, summed
+// in ordered_sum's chunks.
+struct EstimateSums {
+  Range elastic;  // the particles the iteration moves (indices of the state)
+  template <class Term>
+  double sum(Term&& term) const {
+    return ordered_sum<1>(elastic.begin, elastic.end,
+                          [&](std::size_t i) { return std::array<double, 1>{term(i)}; })[0];
+  }
+  double largest(double mine) const { return mine; }
+};
 
 namespace detail {
 // A particle's components in the iteration: its translations, then (models
@@ -53,16 +74,25 @@ inline void turn(const ParticleStore& base, ParticleStore& work, std::size_t i, 
   work.qz[i] = q.z();
 }
 
+// The place's forces and torques of the positions and orientations in
+// `work`: the step's strain fields (half angles, halos, strain pass), then
+// the force pass over its moving particles.
+template <class Model, class Place>
+void forces_of(Model& model, ParticleStore& work, const BondTable& bonds, Place& place) {
+  strain_fields(model, work, bonds, place);
+  model.compute_forces(work, bonds, own_moving(place, work));
+}
+
 // y = A u for the mass-weighted stiffness A about the state `base`; `work` is
-// a scratch copy of it.
-template <class Model>
+// a scratch copy of it. u and y hold the sums' elastic particles' components.
+template <class Model, class Place, class Sums>
 void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleStore& work,
-                             const BondTable& bonds, double l0, const std::vector<double>& u,
-                             std::vector<double>& y) {
+                             const BondTable& bonds, double l0, Place& place, const Sums& sums,
+                             const std::vector<double>& u, std::vector<double>& y) {
   constexpr bool rot = Model::uses_rotation;
   const Components comp = components(base, rot);
   const std::size_t c = comp.count(), nt = comp.translations;
-  const Range r = base.elastic;
+  const Range r = sums.elastic;
   // Displacements d = M^-1/2 u, scaled so the largest moves l0 * 1e-7: small
   // enough to stay linear, large enough to keep 8 digits of the difference.
   double largest = 0;
@@ -73,7 +103,7 @@ void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleSt
     for (std::size_t a = nt; a < c; ++a)
       largest = std::max(largest, std::abs(u[c * k + a]) * std::sqrt(base.inv_inertia[i]) * l0);
   }
-  const double h = 1e-7 * l0 / largest;
+  const double h = 1e-7 * l0 / sums.largest(largest);
   std::vector<double> forces_plus(c * r.size());
   std::vector<double>* positions[3] = {&work.x, &work.y, &work.z};
   const std::vector<double>* base_positions[3] = {&base.x, &base.y, &base.z};
@@ -94,9 +124,7 @@ void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleSt
         turn(base, work, i, phi);
       }
     }
-    if constexpr (rot) compute_half_angles(work, work.moving());
-    model.compute_strain(work, bonds, work.all());
-    model.compute_forces(work, bonds, work.moving());
+    forces_of(model, work, bonds, place);
     for (std::size_t k = 0; k < r.size(); ++k) {
       const std::size_t i = r.begin + k;
       for (std::size_t a = 0; a < c; ++a) {
@@ -113,25 +141,34 @@ void mass_weighted_stiffness(Model& model, const ParticleStore& base, ParticleSt
   }
 }
 
-inline double norm(const std::vector<double>& v) {
-  double s = 0;
-  for (const double x : v) s += x * x;
-  return std::sqrt(s);
+// |v| over every place's particles: each particle's components' squares
+// summed in order, the particles in the sums' order.
+template <class Sums>
+double norm(const std::vector<double>& v, std::size_t c, const Sums& sums) {
+  const std::size_t first = sums.elastic.begin;
+  return std::sqrt(sums.sum([&](std::size_t i) {
+    double s = 0;
+    for (std::size_t a = 0; a < c; ++a) s += v[c * (i - first) + a] * v[c * (i - first) + a];
+    return s;
+  }));
 }
 }  // namespace detail
 
-// omega_max and 2 / omega_max for the state in `s` (usually the initial one).
-// Deterministic: a fixed start vector and serial vector sums, so the step is
-// the same at any thread count.
-template <class Model>
-StableStepEstimate estimate_stable_step(Model& model, const SolverState& s, double l0,
-                                        int max_iterations = 2000, double tolerance = 1e-3) {
-  const ParticleStore& base = s.particles;
+// omega_max and 2 / omega_max for the state `base` (usually the initial one)
+// at `place`, whose own elastic particles are sums.elastic. Every rank of a
+// place over ranks calls it and gets the same estimate. Deterministic: a
+// fixed start vector and ordered sums, so the step is the same at any
+// thread and rank count.
+template <class Model, class Place, class Sums>
+StableStepEstimate estimate_stable_step(Model& model, const ParticleStore& base,
+                                        const BondTable& bonds, double l0, Place& place,
+                                        const Sums& sums, int max_iterations = 2000,
+                                        double tolerance = 1e-3) {
   const detail::Components comp = detail::components(base, Model::uses_rotation);
   const std::size_t c = comp.count(), nt = comp.translations;
-  const Range r = base.elastic;
+  const Range r = sums.elastic;
   StableStepEstimate out;
-  if (r.empty()) return out;
+  if (!(sums.largest(r.empty() ? 0.0 : 1.0) > 0)) return out;  // no elastic particle anywhere
   ParticleStore work = base;
   // Start near the stiffest lattice mode (neighbours moving against each
   // other), with a hashed component so no mode is missed by symmetry.
@@ -157,16 +194,17 @@ StableStepEstimate estimate_stable_step(Model& model, const SolverState& s, doub
   // the last kWindow iterations.
   constexpr int kWindow = 50;
   std::vector<double> history;
+  double length = detail::norm(u, c, sums);
   for (int it = 1; it <= max_iterations; ++it) {
-    const double length = detail::norm(u);
     for (double& x : u) x /= length;
-    detail::mass_weighted_stiffness(model, base, work, s.bonds, l0, u, y);
+    detail::mass_weighted_stiffness(model, base, work, bonds, l0, place, sums, u, y);
     // |A u| with |u| = 1 rises to the largest |eigenvalue| from below.
-    const double estimate = detail::norm(y);
+    const double estimate = detail::norm(y, c, sums);
     history.push_back(estimate);
     out.iterations = it;
     out.omega_max = std::sqrt(estimate);
     u.swap(y);
+    length = estimate;  // the next u's norm
     if (it > kWindow && estimate - history[it - 1 - kWindow] <= tolerance * estimate) {
       out.converged = true;
       break;

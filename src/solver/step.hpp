@@ -128,16 +128,19 @@ Range own_moving(Place& place, const ParticleStore& p) {
 // the model's own fields). Walls keep theta = 0, so their half angles are
 // set once.
 template <class Model, class Place>
-void strain_fields(Model& model, SolverState& s, Place& place) {
-  ParticleStore& p = s.particles;
+void strain_fields(Model& model, ParticleStore& p, const BondTable& bonds, Place& place) {
   if constexpr (Model::uses_rotation) {
     auto t = place.time(Phase::half_angles);
     compute_half_angles(p, own_moving(place, p));
   }
   Model::share_motion(p, place.halo());
   auto t = place.time(Phase::strain);
-  model.strain_pass(p, s.bonds, place.own(p), place.halo());
+  model.strain_pass(p, bonds, place.own(p), place.halo());
   place.halo().finish();
+}
+template <class Model, class Place>
+void strain_fields(Model& model, SolverState& s, Place& place) {
+  strain_fields(model, s.particles, s.bonds, place);
 }
 
 // One step, in order, called by every thread of the team on one rank (by

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "kernels/model_common.hpp"
+#include "src/case/case_spec.hpp"
 #include "src/core/frame_rows.hpp"
 #include "src/core/solver_state.hpp"
+#include "src/core/stable_step_estimate.hpp"
 #include "src/core/timers.hpp"
 #include "src/solver/rank_checks.hpp"
 
@@ -20,6 +22,14 @@ class Stepper {
  public:
   virtual ~Stepper() = default;
 
+  // The model's stable-step limit about `state` (src/solver/
+  // time_step_choice.hpp), estimated where it steps: on this process, or on
+  // every rank's part.
+  virtual StableStepEstimate estimate_stable_step(SolverState& state, const CaseSpec& spec) = 0;
+  // The case with its time step fixed (the caller schedules its state's
+  // loads): the steps follow it, and over ranks every part schedules its
+  // own loads.
+  virtual void set_time_step(const CaseSpec& spec) = 0;
   // Advances `state` by `steps` time steps. Over ranks, the particles stay
   // on their ranks afterwards until bring_to_rank_zero.
   virtual void advance(SolverState& state, std::int64_t steps, PhaseTimers& timers) = 0;

@@ -2,49 +2,119 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "kernels/model_registry.hpp"
 #include "src/solver/contact_setup.hpp"
-#include "src/solver/setup.hpp"
+#include "src/solver/distributed_step.hpp"
+#include "src/solver/stable_step.hpp"
 
 namespace mpsolid {
 
-StableStepEstimate estimate_case_stable_step(const CaseSpec& spec, const SolverState& initial) {
-  AnyModel model = make_model(spec.model, initial.particles, initial.bonds, spec.model_options);
-  StableStepEstimate e =
-      std::visit([&](auto& m) { return estimate_stable_step(m, initial, spec.l0); }, model);
+namespace {
+// Contact stiffens the system only once bodies touch, so its bound is
+// added: the largest eigenvalue of a sum is at most the sum of the largest.
+StableStepEstimate with_contact(StableStepEstimate e, const CaseSpec& spec,
+                                double largest_inv_mass) {
   if (!(e.dt_limit > 0)) return e;
-  // Contact stiffens the system only once bodies touch, so its bound is
-  // added: the largest eigenvalue of a sum is at most the sum of the largest.
-  if (const double contact = contact_omega_squared(spec, initial); contact > 0) {
+  if (const double contact = contact_omega_squared(spec, largest_inv_mass); contact > 0) {
     e.omega_max = std::sqrt(e.omega_max * e.omega_max + contact);
     e.dt_limit = 2.0 / e.omega_max;
   }
   return e;
 }
 
-TimeStepChoice fix_time_step(const CaseSpec& spec, PhaseTimers& timers) {
-  TimeStepChoice choice{spec, {}, {}};
-  if (!spec.dt_auto || spec.dt > 0) return choice;
-  // The initial state the estimate linearises about (it leaves it as it was).
-  const SolverState& initial = choice.initial.emplace(set_up(spec, timers));
-  {
-    auto t = timers.time(Phase::setup);
-    choice.estimate = estimate_case_stable_step(spec, initial);
+// A rank's share of the estimate's sums: its owned elastic particles,
+// every rank's part of each ordered sum gathered and combined in rank order
+// (the one-process bits), the largest value gathered likewise.
+struct PartSums {
+  const RankGroup& world;
+  Range elastic;           // the owned elastic particles (local indices)
+  std::size_t first;       // global storage index of local index elastic.begin
+  Range global_elastic{};  // every rank's elastic particles (global)
+
+  PartSums(const RankGroup& w, const RankPart& part) : world(w) {
+    const Range owned = part.layout.owned, kind = part.local.particles.elastic;
+    const std::size_t b = std::clamp(kind.begin, owned.begin, owned.end);
+    elastic = {b, std::clamp(kind.end, b, owned.end)};
+    first = part.layout.owned_global.begin + (elastic.begin - owned.begin);
+    // The elastic particles are one storage range: its ends over the ranks.
+    const std::vector<double> ends =
+        world.all_gather({elastic.empty() ? -1.0 : static_cast<double>(first),
+                          elastic.empty() ? -1.0 : static_cast<double>(first + elastic.size())});
+    bool any = false;
+    for (std::size_t r = 0; r + 1 < ends.size(); r += 2) {
+      if (ends[r] < 0) continue;
+      const auto from = static_cast<std::size_t>(ends[r]);
+      const auto to = static_cast<std::size_t>(ends[r + 1]);
+      global_elastic =
+          any ? Range{std::min(global_elastic.begin, from), std::max(global_elastic.end, to)}
+              : Range{from, to};
+      any = true;
+    }
   }
-  if (!(choice.estimate.dt_limit > 0))
+
+  template <class Term>
+  double sum(Term&& term) const {
+    const OrderedSumPart<1> mine = ordered_sum_part<1>(
+        global_elastic.begin, global_elastic.end, {first, first + elastic.size()},
+        [&](std::size_t g) { return std::array<double, 1>{term(elastic.begin + (g - first))}; });
+    std::vector<double> message;
+    mine.append_to(message);
+    const std::vector<double> all = world.all_gather(message);
+    std::vector<OrderedSumPart<1>> parts;
+    for (std::size_t at = 0; at < all.size();) parts.push_back(OrderedSumPart<1>::read(all, at));
+    return combine_ordered_sum(parts)[0];
+  }
+  double largest(double mine) const {
+    const std::vector<double> all = world.all_gather({mine});
+    return *std::max_element(all.begin(), all.end());
+  }
+};
+}  // namespace
+
+StableStepEstimate estimate_case_stable_step(const CaseSpec& spec, const SolverState& s) {
+  AnyModel model = make_model(spec.model, s.particles, s.bonds, spec.model_options);
+  PhaseTimers scratch;  // the passes are set-up's, not a step's
+  OneRank place(scratch);
+  const EstimateSums sums{s.particles.elastic};
+  const StableStepEstimate e = std::visit(
+      [&](auto& m) { return estimate_stable_step(m, s.particles, s.bonds, spec.l0, place, sums); },
+      model);
+  return with_contact(
+      e, spec, largest_contact_inv_mass(spec, s.body_ranges, s.particles, s.particles.all(), 0));
+}
+
+StableStepEstimate estimate_part_stable_step(const CaseSpec& spec, RankPart& part,
+                                             const RankGroup& world) {
+  const HaloCost before = part.halo_cost;
+  const PartSums sums(world, part);
+  OverRanks place(part, world, OverRanks::Timing::off);
+  const StableStepEstimate e = std::visit(
+      [&](auto& m) {
+        return estimate_stable_step(m, part.local.particles, part.local.bonds, spec.l0, place,
+                                    sums);
+      },
+      part.model);
+  const double inv_mass =
+      sums.largest(largest_contact_inv_mass(spec, part.body_ranges, part.local.particles,
+                                            part.layout.owned_global, part.layout.owned.begin));
+  part.halo_cost = before;
+  return with_contact(e, spec, inv_mass);
+}
+
+void choose_time_step(CaseSpec& spec, const StableStepEstimate& estimate) {
+  if (!(estimate.dt_limit > 0))
     throw InputError(fmt::format(
         "{}: time.dt = \"auto\" needs elastic particles to estimate the stable step from; "
         "give dt in s",
         spec.source));
-  choice.spec.set_auto_time_step(choice.estimate.dt_limit, choice.estimate.omega_max);
-  return choice;
+  spec.set_auto_time_step(estimate.dt_limit, estimate.omega_max);
 }
 
-std::string fixed_time_step_warning(const CaseSpec& spec, const SolverState& initial) {
-  if (spec.dt_auto) return "";
-  const StableStepEstimate e = estimate_case_stable_step(spec, initial);
+std::string fixed_time_step_warning(const CaseSpec& spec, const StableStepEstimate& e) {
   if (!(e.dt_limit > 0) || spec.dt <= e.dt_limit) return "";
   return fmt::format(
       "{}: time.dt = {:.6g} s is above the stable step estimated for the {} model on this case, "

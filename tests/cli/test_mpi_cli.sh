@@ -7,7 +7,8 @@
 #    same bits;
 #  - contact (the colliding blocks) at 2 and 3 ranks, and a 2-rank
 #    checkpoint written mid-collision resumed at 1 and 3 ranks, give the
-#    serial bits;
+#    serial bits, and the ranks' estimate of the stable step is the serial
+#    one (and warns of a given dt above it the same way);
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
 #    and so does an inverted bond (the same diagnosis and outputs);
 #  - the finite-strain model at 2 ranks gives the serial bits too, and so
@@ -206,6 +207,28 @@ for ranks in 2 3; do
   [[ $rc -eq 0 ]] && same "contact at $ranks ranks" "$TMP/contact$ranks" "$TMP/c_serial" ||
     fail "contact at $ranks ranks: exit $rc"
 done
+# time.dt = "auto" is estimated on every rank's part, contact's bound
+# included: the serial estimate's bits (run.json).
+for ranks in 2 3; do
+  /usr/bin/python3 -c '
+import json, sys
+a, b = (json.load(open(f))["stable_step"] for f in sys.argv[1:])
+sys.exit(0 if (a["omega_max"], a["iterations"]) == (b["omega_max"], b["iterations"]) else 1)' \
+    "$TMP/c_serial/run.json" "$TMP/contact$ranks/run.json" 2>/dev/null &&
+    ok "contact at $ranks ranks: the serial stable-step estimate, bit for bit" ||
+    fail "contact at $ranks ranks: run.json's stable_step differs from the serial run's"
+done
+# A given dt above the limit: the same warning from the ranks' estimate.
+"$BIN" run "$CASE" --set time.dt=2e-5 --set time.end=2e-5 --out "$TMP/warn_serial" --threads 1 \
+  </dev/null >/dev/null 2>"$TMP/warn_serial.err"
+mpi 2 warn2 run "$CASE" --set time.dt=2e-5 --set time.end=2e-5 --out "$TMP/warn2"
+if grep -q "is above the stable step" "$TMP/warn_serial.err" &&
+  diff <(grep "warning:" "$TMP/warn_serial.err") <(grep "warning:" "$TMP/warn2.err") >/dev/null; then
+  ok "a dt above the limit at 2 ranks: the serial run's warning"
+else
+  fail "a dt above the limit at 2 ranks: the warning differs or is missing"
+  sed 's/^/    /' "$TMP/warn2.err" | head -n 4
+fi
 mpi 2 c_half run "$C_CASE" "${C_SETS[@]}" --set time.end=1.2e-3 --out "$TMP/c_half"
 cp -r "$TMP/c_half" "$TMP/c_half3"
 "$BIN" resume "$TMP/c_half" --set time.end=2.4e-3 --threads 1 >/dev/null 2>&1 </dev/null &&

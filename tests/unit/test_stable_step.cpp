@@ -6,6 +6,10 @@
 #include <cmath>
 
 #include "src/core/parallel.hpp"
+#include "src/distributed/thread_ranks.hpp"
+#include "src/solver/case_loader.hpp"
+#include "src/solver/distributed_step.hpp"
+#include "src/solver/time_step_choice.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
@@ -50,6 +54,59 @@ TEST(StableStep, SameStepAtAnyThreadCount) {
   const double two = limit_of(rod_case({"time.dt=\"auto\"", "time.end=1e-4"}));
   set_thread_count(1);
   EXPECT_EQ(one, two);
+}
+
+// The estimate on every rank's part of `global` (threads as ranks), which
+// must agree on every rank.
+StableStepEstimate estimate_in_parts(const CaseSpec& spec, const SolverState& global, int ranks) {
+  set_thread_count(ranks);
+  ThreadMailboxes boxes(ranks);
+  std::vector<StableStepEstimate> got(static_cast<std::size_t>(ranks));
+  run_in_team([&] {
+    EXPECT_EQ(team_size(), static_cast<std::size_t>(ranks));
+    const auto me = static_cast<int>(team_rank());
+    serial_section([&] {
+      ThreadRanks world(boxes, me);
+      RankPart part = make_rank_part(spec, global, world);
+      got[static_cast<std::size_t>(me)] = estimate_part_stable_step(spec, part, world);
+    });
+  });
+  set_thread_count(1);
+  for (const StableStepEstimate& e : got) {
+    EXPECT_EQ(e.omega_max, got[0].omega_max);
+    EXPECT_EQ(e.iterations, got[0].iterations);
+  }
+  return got[0];
+}
+
+TEST(StableStep, SameBitsOnEveryRankCountsParts) {
+  // Every model in the plane (rotations or none), a wall and rigid bodies,
+  // contact's bound, and space.
+  std::vector<CaseSpec> cases;
+  for (const char* model : kModels)
+    cases.push_back(rod_case(
+        {"time.dt=\"auto\"", "time.end=1e-4", "l0=0.004", std::string("model=\"") + model + "\""}));
+  for (const char* file :
+       {"cases/colliding_blocks.toml", "cases/disk_impact.toml", "cases/spinning_cube.toml"})
+    cases.push_back(load_case(testing::source_path(file), {}));
+  for (const CaseSpec& spec : cases) {
+    SCOPED_TRACE(spec.name + " " + spec.model);
+    set_thread_count(1);
+    Simulation sim(spec);
+    const SolverState& global = sim.state();
+    const StableStepEstimate whole = estimate_case_stable_step(sim.spec(), global);
+    ASSERT_GT(whole.dt_limit, 0.0);
+    // The run's own estimate is this one.
+    EXPECT_EQ(whole.omega_max, sim.stable_step().omega_max);
+    for (const int ranks : {2, 3, 4}) {
+      const StableStepEstimate parts = estimate_in_parts(sim.spec(), global, ranks);
+      EXPECT_EQ(parts.omega_max, whole.omega_max) << ranks << " ranks";
+      EXPECT_EQ(parts.dt_limit, whole.dt_limit) << ranks << " ranks";
+      EXPECT_EQ(parts.iterations, whole.iterations) << ranks << " ranks";
+      EXPECT_EQ(parts.converged, whole.converged) << ranks << " ranks";
+    }
+  }
+  set_thread_count(available_cores());
 }
 
 // Runs a free block from a tiny checkerboard kick at `fraction` of the
