@@ -30,16 +30,8 @@
 namespace mpsolid {
 
 namespace {
-std::string body_of(Simulation& sim, std::size_t i) {
-  return sim.spec().bodies[static_cast<std::size_t>(sim.particles().body[i])].name;
-}
-
-// A particle's position (`initial`: its reference one), with z in space.
-std::vector<double> position_of(const ParticleStore& p, std::size_t i, bool initial) {
-  if (p.dimension == 3)
-    return initial ? std::vector<double>{p.x0[i], p.y0[i], p.z0[i]}
-                   : std::vector<double>{p.x[i], p.y[i], p.z[i]};
-  return initial ? std::vector<double>{p.x0[i], p.y0[i]} : std::vector<double>{p.x[i], p.y[i]};
+std::string body_name(Simulation& sim, const ParticleFacts& f) {
+  return sim.spec().bodies[static_cast<std::size_t>(f.body)].name;
 }
 
 std::string in_mm(const std::vector<double>& position) {
@@ -49,9 +41,9 @@ std::string in_mm(const std::vector<double>& position) {
 }
 
 std::string describe_particle(Simulation& sim, std::size_t i) {
-  const ParticleStore& p = sim.particles();
-  return fmt::format("particle {} (body {}, initial position {}, now {})", p.id[i], body_of(sim, i),
-                     in_mm(position_of(p, i, true)), in_mm(position_of(p, i, false)));
+  const ParticleFacts f = sim.particle_facts(i);
+  return fmt::format("particle {} (body {}, initial position {}, now {})", f.id, body_name(sim, f),
+                     in_mm(f.initial), in_mm(f.now));
 }
 
 // Where, when and which criterion, in words (the state is the failing one).
@@ -78,16 +70,15 @@ Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_
             {"where", v.where},
             {"last_good_step", last_good_step},
             {"last_good_time", sim.spec().time_at(last_good_step)}};
-  const ParticleStore& p = sim.particles();
-  const std::size_t i = v.particle;
+  const ParticleFacts f = sim.particle_facts(v.particle);
   return {{"criterion", v.criterion},
           {"time", sim.time()},
           {"step", sim.step()},
-          {"particle_id", p.id[i]},
-          {"body", body_of(sim, i)},
-          {"initial_position", position_of(p, i, true)},
-          {"position", position_of(p, i, false)},
-          {"neighbor_id", v.has_neighbor ? Json(p.id[v.neighbor]) : Json(nullptr)},
+          {"particle_id", f.id},
+          {"body", body_name(sim, f)},
+          {"initial_position", f.initial},
+          {"position", f.now},
+          {"neighbor_id", v.has_neighbor ? Json(sim.particle_facts(v.neighbor).id) : Json(nullptr)},
           {"value", v.value},
           {"last_good_step", last_good_step},
           {"last_good_time", sim.spec().time_at(last_good_step)}};
@@ -96,7 +87,8 @@ Json failure_json(Simulation& sim, const StabilityVerdict& v, std::int64_t last_
 // What run.json and a checkpoint read (over MPI ranks, rank 0's copy with
 // its bodies, loads and step current: Simulation::checkpoint_source).
 RunReportInputs report_inputs(Simulation& sim, const SolverState& state) {
-  return {sim.spec(), state, sim.timers(), sim.stable_step(), sim.gas_saved()};
+  return {sim.spec(),        state,          sim.particle_count(), sim.bond_count(), sim.timers(),
+          sim.stable_step(), sim.gas_saved()};
 }
 
 // A checkpoint of the current state, over MPI ranks each rank writing its
@@ -257,6 +249,7 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
   facts.wall_seconds = seconds_since_start();
   facts.thread_wait_seconds = team_wait_seconds() - facts.wait_at_start;
   facts.rank_times = sim.rank_times();
+  facts.rank_zero_copy = sim.holds_particles();
   facts.thread_crossing = sim.thread_crossing();
   {
     auto t = sim.timers().time(Phase::output);
@@ -396,7 +389,8 @@ int run_case(const CaseSpec& spec, const RunOptions& options) {
   prepare_output_folder(options.out_dir);
   if (!lock) lock_and_check();
   return with_failed_writes_explained(options.out_dir, [&] {
-    RunFolder outputs(options.out_dir, sim.state(), sim.spec());
+    RunFolder outputs(options.out_dir, sim.state(), sim.spec(), sim.particle_count(),
+                      sim.bond_hash());
     lock->record_owner();
     return run_loop(sim, outputs, facts, options, true);
   });
@@ -430,7 +424,8 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
 
   RunFacts facts = begin_segment(options, checkpoint.step);
   check_memory(spec, facts.threads, available_memory_bytes());
-  Simulation sim(spec, options.followers);
+  // The checkpoint is restored on rank 0, which keeps the whole copy.
+  Simulation sim(spec, options.followers, RankZeroCopy::whole);
   restore_state(sim.state_to_change(), checkpoint, path.string());
   try {
     sim.restore_gas_saved(checkpoint.gas);

@@ -12,6 +12,10 @@ namespace mpsolid {
 
 class Fnv1a {
  public:
+  Fnv1a() = default;
+  // Goes on from another hash's value: bytes hashed in parts, one after the
+  // other (each rank its rows), give the hash of them all.
+  explicit Fnv1a(std::uint64_t value) : h_(value) {}
   void bytes(const void* data, std::size_t n) {
     const auto* c = static_cast<const unsigned char*>(data);
     for (std::size_t k = 0; k < n; ++k) h_ = (h_ ^ c[k]) * 1099511628211ull;

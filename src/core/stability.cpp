@@ -74,9 +74,10 @@ StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, doubl
   return v;
 }
 
-double energy_balance_floor(const ParticleStore& p, double particle_volume) {
+double energy_balance_floor(const std::vector<ParticleGroup>& groups, double particle_volume) {
   double sum = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) sum += p.lambda[i] + 2 * p.mu[i];
+  for (const ParticleGroup& g : groups)
+    sum += static_cast<double>(g.particles) * (g.material.lambda() + 2 * g.material.mu());
   return 0.5e-12 * sum * particle_volume;
 }
 

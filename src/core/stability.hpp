@@ -51,8 +51,14 @@ StabilityVerdict check_energy(const Diagnostics& d, double initial_energy, doubl
                               double tolerance, double floor = 0.0);
 
 // The energy floor of the balance: the strain energy of a uniform strain
-// of 1e-6 in every particle, sum over particles of (lambda + 2 mu) V 1e-12 / 2.
-double energy_balance_floor(const ParticleStore& p, double particle_volume);
+// of 1e-6 in every particle, sum over particles of (lambda + 2 mu) V 1e-12 /
+// 2, from each group's particle count and material (one group per body:
+// no rank need hold the particles).
+struct ParticleGroup {
+  std::size_t particles;
+  Material material;
+};
+double energy_balance_floor(const std::vector<ParticleGroup>& groups, double particle_volume);
 
 // Largest dilatational wave speed sqrt((lambda + 2 mu) / rho) of the case's materials.
 double dilatational_wave_speed(const std::vector<Material>& materials);

@@ -23,22 +23,23 @@ Decomposition decompose(const BondTable& bonds, int ranks, const std::vector<Ran
   return decompose_costs(particle_work(bonds), ranks, keep_whole);
 }
 
-Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
-                              const std::vector<Range>& keep_whole) {
+namespace {
+// The cut of n particles whose work before particle i is work(i) (work(0)
+// = 0, non-decreasing): each boundary nearest r / ranks of the work, never
+// before the last one, and moved down to the start of a range kept whole.
+template <class WorkBefore>
+Decomposition cut_work(std::size_t n, int ranks, const std::vector<Range>& keep_whole,
+                       WorkBefore&& work) {
   if (ranks < 1) throw std::invalid_argument("decompose: at least one rank");
-  const std::size_t n = cost.size();
-  // Work before each particle.
-  std::vector<double> work(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) work[i + 1] = work[i] + cost[i];
   Decomposition d;
   d.starts.assign(static_cast<std::size_t>(ranks) + 1, n);
   d.starts[0] = 0;
   std::size_t c = 0;
+  const double total = work(n);
   for (int r = 1; r < ranks; ++r) {
-    // The boundary nearest r / ranks of the work, never before the last one.
-    const double target = work[n] * r / ranks;
-    while (c < n && work[c + 1] <= target) ++c;
-    if (c < n && target - work[c] > work[c + 1] - target) ++c;
+    const double target = total * r / ranks;
+    while (c < n && work(c + 1) <= target) ++c;
+    if (c < n && target - work(c) > work(c + 1) - target) ++c;
     std::size_t cut = c;
     for (const Range& whole : keep_whole)
       if (cut > whole.begin && cut < whole.end) cut = whole.begin;
@@ -46,6 +47,22 @@ Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
         std::max(d.starts[static_cast<std::size_t>(r) - 1], cut);
   }
   return d;
+}
+}  // namespace
+
+Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
+                              const std::vector<Range>& keep_whole) {
+  const std::size_t n = cost.size();
+  // Work before each particle.
+  std::vector<double> work(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) work[i + 1] = work[i] + cost[i];
+  return cut_work(n, ranks, keep_whole, [&](std::size_t i) { return work[i]; });
+}
+
+Decomposition decompose_count(std::size_t particles, int ranks,
+                              const std::vector<Range>& keep_whole) {
+  return cut_work(particles, ranks, keep_whole,
+                  [](std::size_t i) { return static_cast<double>(i); });
 }
 
 HaloPlan plan_halo(const BondTable& bonds, const Decomposition& d, int rank) {

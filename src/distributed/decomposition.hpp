@@ -45,6 +45,11 @@ std::vector<double> particle_work(const BondTable& bonds);
 Decomposition decompose_costs(const std::vector<double>& cost, int ranks,
                               const std::vector<Range>& keep_whole = {});
 
+// The same cut with every particle's work one: from the particle count
+// alone, for a set-up by part, where no rank holds the bond table.
+Decomposition decompose_count(std::size_t particles, int ranks,
+                              const std::vector<Range>& keep_whole = {});
+
 // One rank's halo: its ghosts, and per neighbouring rank what it sends
 // (its own particles that rank needs) and receives (that rank's particles
 // it needs). All storage indices, ascending; neighbours ascending.

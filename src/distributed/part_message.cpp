@@ -336,4 +336,46 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   return part;
 }
 
+namespace {
+Range to_global(Range local, const LocalLayout& layout) {
+  return {layout.owned_global.begin + (local.begin - layout.owned.begin),
+          layout.owned_global.begin + (local.end - layout.owned.begin)};
+}
+}  // namespace
+
+void append_owned_items(const SolverState& local, const LocalLayout& layout,
+                        std::vector<double>& out) {
+  // The pieces, each after its length (the last one short, perhaps empty).
+  const std::function<void(const std::vector<double>&)> send = [&](const std::vector<double>& p) {
+    out.push_back(static_cast<double>(p.size()));
+    out.insert(out.end(), p.begin(), p.end());
+  };
+  Writer w(send);
+  put_items(w, local.rigid_bodies, [&](Writer& to, RigidBody b) {
+    b.range = to_global(b.range, layout);
+    put_body(to, b);
+  });
+  put_items(w, local.loads, [&](Writer& to, StepLoad l) {
+    if (l.is_pressure()) throw std::logic_error("append_owned_items: a pressure load");
+    l.range = to_global(l.range, layout);
+    put_load(to, l);
+  });
+  w.finish();
+}
+
+void read_owned_items(const std::vector<double>& in, std::size_t& at, SolverState& head) {
+  const std::function<std::vector<double>()> receive = [&] {
+    const auto n = static_cast<std::size_t>(in.at(at));
+    if (at + 1 + n > in.size()) throw std::runtime_error("a rank's bodies and loads cut short");
+    std::vector<double> piece(in.begin() + static_cast<long>(at + 1),
+                              in.begin() + static_cast<long>(at + 1 + n));
+    at += 1 + n;
+    return piece;
+  };
+  Reader r(receive);
+  for (RigidBody& b : get_items<RigidBody>(r, get_body)) head.rigid_bodies.push_back(std::move(b));
+  for (StepLoad& l : get_items<StepLoad>(r, get_load)) head.loads.push_back(std::move(l));
+  if (!r.done()) throw std::runtime_error("a rank's bodies and loads: values left over");
+}
+
 }  // namespace mpsolid

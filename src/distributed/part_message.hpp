@@ -42,4 +42,13 @@ void pack_local_part(const LocalPart& part,
                      const std::function<void(const std::vector<double>&)>& send);
 LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive);
 
+// A rank's own rigid bodies and loads, whole, with their ranges in global
+// storage indices (the owned particles are contiguous in both), appended to
+// `out`: what rank 0 keeps of them when it holds no particle.
+void append_owned_items(const SolverState& local, const LocalLayout& layout,
+                        std::vector<double>& out);
+// Reads them from in[at...] onto `head`'s rigid bodies and loads; `at` moves
+// past them.
+void read_owned_items(const std::vector<double>& in, std::size_t& at, SolverState& head);
+
 }  // namespace mpsolid

@@ -71,11 +71,11 @@ std::filesystem::path sidecar_path(const std::filesystem::path& path) {
 }  // namespace
 
 FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& state,
-                         const CaseSpec& spec, std::uint64_t run_id)
+                         const CaseSpec& spec, std::uint64_t run_id, std::size_t particles)
     : path_(path),
       file_(std::make_unique<File>()),
       compression_(spec.compression),
-      particles_(state.particles.size()),
+      particles_(particles),
       dimension_(spec.dimension) {
   file_->file = h5::File::create(staging_path(path));
   file_->frames = file_->file.create_group("frames");
@@ -94,11 +94,12 @@ FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& s
 }
 
 FrameWriter::FrameWriter(const std::filesystem::path& path, const SolverState& state,
-                         const CaseSpec& spec, std::uint64_t run_id, int keep_frames)
+                         const CaseSpec& spec, std::uint64_t run_id, std::size_t particles,
+                         int keep_frames)
     : path_(path),
       file_(std::make_unique<File>()),
       compression_(spec.compression),
-      particles_(state.particles.size()),
+      particles_(particles),
       dimension_(spec.dimension) {
   const std::filesystem::path staged = staging_path(path);
   if (!std::filesystem::exists(path))

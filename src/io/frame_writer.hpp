@@ -22,13 +22,15 @@ class FrameWriter {
  public:
   // A new file, written to a staging file; publish() renames it to `path`.
   // Deflate level spec.compression (0: off, to 9). `run_id` ties it to its checkpoints.
+  // `particles`: the run's (`state` may hold none: over MPI ranks every rank
+  // writes its own rows).
   FrameWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec,
-              std::uint64_t run_id);
+              std::uint64_t run_id, std::size_t particles);
   // A resumed run: continues the published file at `path` from its first
   // `keep_frames` frames (later ones are dropped). Throws InputError if that
   // file is missing, belongs to another run or has fewer frames.
   FrameWriter(const std::filesystem::path& path, const SolverState& state, const CaseSpec& spec,
-              std::uint64_t run_id, int keep_frames);
+              std::uint64_t run_id, std::size_t particles, int keep_frames);
   ~FrameWriter();
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;

@@ -101,12 +101,12 @@ std::string earlier_results(const std::filesystem::path& dir) {
 }
 
 RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
-                     const CaseSpec& spec)
+                     const CaseSpec& spec, std::size_t particles, std::uint64_t bond_hash)
     : dir_(prepare_fresh(dir)),
       run_id_(new_run_id()),
-      bond_hash_(state.bonds.hash()),
+      bond_hash_(bond_hash),
       history_(dir / "history.csv", state, spec),
-      frames_(dir / "frames.h5", state, spec, run_id_) {
+      frames_(dir / "frames.h5", state, spec, run_id_, particles) {
   write_file_atomically(dir / "case.resolved.toml", spec.resolved_toml);
 }
 
@@ -116,7 +116,8 @@ RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
       run_id_(from.run_id),
       bond_hash_(from.bond_hash),
       history_(dir / "history.csv", state, spec, from.history_bytes),
-      frames_(dir / "frames.h5", state, spec, run_id_, static_cast<int>(from.frames)),
+      frames_(dir / "frames.h5", state, spec, run_id_,
+              static_cast<std::size_t>(from.particle_count), static_cast<int>(from.frames)),
       previous_segments_(from.segments),
       last_checkpoint_step_(from.step),
       last_frame_step_(-1) {
@@ -163,6 +164,7 @@ void RunFolder::checkpoint(const RunReportInputs& in, RunFacts facts, const RowP
     frames_.publish_copy();
   }
   Checkpoint c = capture_state(state, !placer);
+  c.particle_count = static_cast<std::int64_t>(in.particles);
   c.gas = in.gas;
   c.case_toml = spec.resolved_toml;
   c.bond_hash = bond_hash_;

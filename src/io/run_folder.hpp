@@ -36,7 +36,10 @@ std::string earlier_results(const std::filesystem::path& dir);
 class RunFolder {
  public:
   // A fresh run in `dir` (created if needed).
-  RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec);
+  // `particles` and `bond_hash` (BondTable::hash) are the run's: over MPI
+  // ranks `state` may hold no particle.
+  RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec,
+            std::size_t particles, std::uint64_t bond_hash);
   // A resumed run: `state` is the restored state of `from`.
   RunFolder(const std::filesystem::path& dir, const SolverState& state, const CaseSpec& spec,
             const Checkpoint& from);

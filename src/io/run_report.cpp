@@ -75,7 +75,10 @@ Json thread_facts_json(const RunFacts& facts) {
       {"team_size_changes", facts.team_size_changes}};
   // Over several ranks: each rank's particles, its passes' time, its halo
   // exchanges (waiting for the slowest rank included) and the bytes it sent.
-  if (!facts.rank_times.empty()) facts_json["per_rank"] = ranks_json(facts.rank_times, "rank");
+  if (!facts.rank_times.empty()) {
+    facts_json["per_rank"] = ranks_json(facts.rank_times, "rank");
+    facts_json["rank_zero_copy"] = facts.rank_zero_copy ? "whole" : "none";
+  }
   // With several threads on one process, stepping as ranks: what crossed
   // between them per step (summed over the threads; each rendezvous reads
   // every other thread's counter line), and each thread's part.
@@ -124,7 +127,7 @@ Json segment_json(const RunReportInputs& in, const RunFacts& facts) {
 std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                             const std::vector<std::string>& previous_segments) {
   const double steps_per_second = rate(facts);
-  const std::size_t particles = in.state.particles.size();
+  const std::size_t particles = in.particles;
   Json segments = Json::array();
   for (const std::string& s : previous_segments) segments.push_back(Json::parse(s));
   segments.push_back(segment_json(in, facts));
@@ -143,7 +146,7 @@ std::string run_report_json(const RunReportInputs& in, const RunFacts& facts,
                  {"threads", facts.threads},
                  {"ranks", facts.ranks},
                  {"particles", particles},
-                 {"bonds", in.state.bonds.entry_count() / 2},
+                 {"bonds", in.bonds},
                  {"dt", in.spec.dt},
                  {"steps", facts.steps},
                  {"final_step", in.state.step},

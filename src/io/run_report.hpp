@@ -35,6 +35,9 @@ struct RunFacts {
   int ranks = 1;  // MPI ranks (docs/mpi.md)
   // Per rank over several ranks (this segment).
   std::vector<RankTimes> rank_times;
+  // Over several ranks, whether rank 0 held a copy of the particles and
+  // bonds ("whole") or only the bodies, loads and probes ("none").
+  bool rank_zero_copy = true;
   // The threads stepping as ranks on one process (threads = 0: none did).
   ThreadCrossing thread_crossing;
   std::int64_t steps = 0;  // steps advanced in this run
@@ -62,6 +65,7 @@ struct RunFacts {
 struct RunReportInputs {
   const CaseSpec& spec;
   const SolverState& state;
+  std::size_t particles, bonds;  // the run's (`state` may hold none of them)
   const PhaseTimers& timers;
   const StableStepEstimate& stable_step;
   // The gas's named arrays for a checkpoint (empty without a gas).

@@ -151,6 +151,17 @@ std::invalid_argument split(const std::string& what, const std::string& name) {
 }
 }  // namespace
 
+Decomposition decompose_case(const CaseSpec& spec, int ranks) {
+  const BodyLayout layout = body_layout(spec);
+  std::vector<Range> whole;
+  for (const std::size_t b : layout.order)
+    if (spec.bodies[b].kind == Kind::rigid) whole.push_back(layout.range[b]);
+  for (const LoadSpec& l : spec.loads)
+    if (l.type != LoadSpec::Type::pressure)
+      whole.push_back(layout.range[static_cast<std::size_t>(l.body)]);
+  return decompose_count(layout.total, ranks, whole);
+}
+
 LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
   if (!part_set_up_covers(spec))
     throw std::logic_error("set_up_part: a case with contact, a gas or a pressure load");

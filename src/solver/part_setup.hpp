@@ -17,6 +17,11 @@ namespace mpsolid {
 // (their candidates, outlines and surface nodes come from the whole state).
 bool part_set_up_covers(const CaseSpec& spec);
 
+// The case's cut over `ranks` from its particle count alone (no rank holds
+// the bond table to weigh them by), rigid bodies and bodies under a force
+// kept whole, as decompose_state keeps them.
+Decomposition decompose_case(const CaseSpec& spec, int ranks);
+
 // Rank `rank`'s part of the case cut by `d`, its loads not yet scheduled
 // (schedule_loads, once dt is fixed). Throws std::invalid_argument for a
 // rigid or loaded body the cut splits.

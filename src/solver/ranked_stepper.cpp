@@ -7,6 +7,7 @@
 
 #include "src/core/float_mode.hpp"
 #include "src/core/process_memory.hpp"
+#include "src/distributed/bond_table_facts.hpp"
 #include "src/distributed/state_slice.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
@@ -28,6 +29,8 @@ struct RankStepping {
   std::vector<FrameSurface> surfaces;
   bool surfaces_made = false;
   RowPlacement placement;              // of the batch that writes rows
+  bool whole_on_rank_zero = true;      // false: rank 0 keeps no particle (told by a head round)
+  std::size_t describe = 0;            // the particle a describe round names
   Decomposition decomposition;         // rank 0: who owns what
   std::int64_t rebuilds_reported = 0;  // this rank's contact list rebuilds
   std::vector<double> good;            // the last good slice (step first), as sent
@@ -95,6 +98,13 @@ void take_slice(RankPart& p, const std::vector<double>& slice) {
   StateSlice::read(p.local, p.layout.owned, slice, at);
 }
 
+// Whether a fields round sends the strain and pressure arrays: for rank 0's
+// copy of the particles, when it has one and the round is neither a check's
+// nor a placement's.
+bool field_arrays(const RankStepping& parts, Exchange how) {
+  return parts.whole_on_rank_zero && !how.check && !how.write_rows;
+}
+
 // This rank's part of a batch: the steps, then (when brought back) its slice
 // and report (and fields) for rank 0.
 std::vector<double> step_and_report(RankStepping& parts, const Communicator& world,
@@ -116,12 +126,45 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
     StateSlice::append(p.local, p.layout.owned, parts.good);
   }
   std::vector<double> back;
-  if (how.bring_back) StateSlice::append(p.local, p.layout.owned, back);
+  if (how.head) {
+    // Rank 0 keeps no particle from now on: this rank's bodies and loads,
+    // and the bond table's facts (collective).
+    parts.whole_on_rank_zero = false;
+    append_owned_items(p.local, p.layout, back);
+    const BondTableFacts bonds = bond_table_facts(p.local.bonds, p.layout, world);
+    back.push_back(static_cast<double>(bonds.bonds));
+    back.push_back(static_cast<double>(bonds.hash >> 32));
+    back.push_back(static_cast<double>(bonds.hash & 0xffffffffu));
+  }
+  if (how.describe) {
+    parts.describe = static_cast<std::size_t>(
+        world
+            .all_gather(world.rank() == 0 ? std::vector<double>{static_cast<double>(parts.describe)}
+                                          : std::vector<double>{})
+            .at(0));
+    const Range mine = p.layout.owned_global;
+    if (parts.describe >= mine.begin && parts.describe < mine.end) {
+      const ParticleFacts f =
+          ParticleFacts::of(p.local.particles, p.layout.local_of_owned(parts.describe));
+      back.insert(back.end(), {1.0, static_cast<double>(f.id), static_cast<double>(f.body),
+                               static_cast<double>(f.initial.size())});
+      back.insert(back.end(), f.initial.begin(), f.initial.end());
+      back.insert(back.end(), f.now.begin(), f.now.end());
+    } else {
+      back.push_back(0.0);
+    }
+  }
+  if (how.bring_back) {
+    if (parts.whole_on_rank_zero)
+      StateSlice::append(p.local, p.layout.owned, back);
+    else
+      StateSlice::append_items(p.local, p.layout.owned, back);
+  }
   if (how.bring_back || how.report) {
     append_report(p, p.local.contact.rebuilds - parts.rebuilds_reported, back);
     parts.rebuilds_reported = p.local.contact.rebuilds;
   }
-  if (how.fields) append_rank_fields(p, world, parts.limits, back, !how.check && !how.write_rows);
+  if (how.fields) append_rank_fields(p, world, parts.limits, back, field_arrays(parts, how));
   if (how.check) append_rank_check(p, back);
   if (how.write_rows) {
     const bool frame = parts.placement.content == RowPlacement::Content::frame;
@@ -138,21 +181,22 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 1024;
+constexpr std::int64_t kExchangeFlags = 4096;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
          (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
          (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0) +
-         (how.estimate ? 256 : 0) + (how.time_step ? 512 : 0);
+         (how.estimate ? 256 : 0) + (how.time_step ? 512 : 0) + (how.head ? 1024 : 0) +
+         (how.describe ? 2048 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
 }
 Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0,   (flags & 2) != 0,  (flags & 4) != 0,  (flags & 8) != 0,
-          (flags & 16) != 0,  (flags & 32) != 0, (flags & 64) != 0, (flags & 128) != 0,
-          (flags & 256) != 0, (flags & 512) != 0};
+  return {(flags & 1) != 0,   (flags & 2) != 0,   (flags & 4) != 0,    (flags & 8) != 0,
+          (flags & 16) != 0,  (flags & 32) != 0,  (flags & 64) != 0,   (flags & 128) != 0,
+          (flags & 256) != 0, (flags & 512) != 0, (flags & 1024) != 0, (flags & 2048) != 0};
 }
 }  // namespace
 
@@ -216,7 +260,49 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   parts_->decomposition = decomposition;
 }
 
+RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head)
+    : followers_(followers), whole_(false) {
+  const Communicator& world = followers.world();
+  if (!part_set_up_covers(spec))
+    throw std::logic_error("RankedStepper: no whole copy for a case the set-up by part leaves out");
+  followers.send_case(spec.resolved_toml);
+  const Decomposition cut = decompose_case(spec, world.size());
+  slice_moves_.resize(static_cast<std::size_t>(world.size()));
+  const std::vector<double> starts(cut.starts.begin(), cut.starts.end());
+  for (int r = 1; r < world.size(); ++r) world.send(r, starts);
+  try {
+    parts_ = make_parts(spec, set_up_part(spec, cut, 0));
+  } catch (const std::invalid_argument& e) {
+    throw refusal(spec, e.what(), world.size());
+  }
+  parts_->decomposition = cut;
+  // The head: what every rank's part knows of the whole (the bodies'
+  // ranges, the probes, the damping), then every rank's rigid bodies and
+  // loads, which arrive in storage order; the loads go back to the case's.
+  const SolverState& mine = parts_->part.local;
+  head = SolverState{};
+  head.particles.dimension = spec.dimension;
+  head.body_ranges = parts_->part.body_ranges;
+  head.probes = parts_->part.probes;
+  head.damping = mine.damping;
+  head.step = mine.step;
+  exchange(head, 0, {.head = true});
+  std::vector<StepLoad> in_case_order;
+  for (const LoadSpec& l : spec.loads)
+    for (StepLoad& load : head.loads)
+      if (load.name == l.name) in_case_order.push_back(std::move(load));
+  head.loads = std::move(in_case_order);
+  counts_.particles = cut.starts.back();
+}
+
 RankedStepper::~RankedStepper() = default;
+
+ParticleFacts RankedStepper::particle_facts(SolverState& global, std::size_t i) {
+  if (whole_) return Stepper::particle_facts(global, i);
+  parts_->describe = i;
+  exchange(global, 0, {.describe = true});
+  return described_;
+}
 
 StableStepEstimate RankedStepper::estimate_stable_step(SolverState& global, const CaseSpec& spec) {
   parts_->spec = spec;
@@ -293,6 +379,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     world.broadcast(text);
   }
   if (how.send_slices) {
+    if (!whole_) throw std::logic_error("RankedStepper: slices to send, but rank 0 holds none");
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
       StateSlice::append(global, d.owned(r), slice);
@@ -312,12 +399,34 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   std::vector<OrderedSumPart<1>> energy_parts;
   RankChecks checks(p.extent_ranges.size());
   std::string write_failure;  // the first rank's that could not write its rows
+  std::size_t bond_count = 0;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
+    if (how.head) {
+      read_owned_items(back, at, global);
+      bond_count = static_cast<std::size_t>(back.at(at));
+      counts_.bond_hash = (static_cast<std::uint64_t>(back.at(at + 1)) << 32) |
+                          static_cast<std::uint64_t>(back.at(at + 2));
+      at += 3;
+    }
+    if (how.describe && back.at(at++) != 0.0) {
+      described_.id = static_cast<std::int64_t>(back.at(at));
+      described_.body = static_cast<int>(back.at(at + 1));
+      const auto n = static_cast<long>(back.at(at + 2));
+      const auto from = back.begin() + static_cast<long>(at + 3);
+      described_.initial.assign(from, from + n);
+      described_.now.assign(from + n, from + 2 * n);
+      at += 3 + 2 * static_cast<std::size_t>(n);
+    }
     if (how.bring_back) {
-      StateSlice::read(global, d.owned(r), back, at);
-      count_slice_move(r, at);
+      const std::size_t first = at;
+      if (parts_->whole_on_rank_zero) {
+        StateSlice::read(global, d.owned(r), back, at);
+        count_slice_move(r, at - first);
+      } else {
+        StateSlice::read_items(global, d.owned(r), back, at);
+      }
     }
     if (how.bring_back || how.report) {
       rank_times_.push_back(read_report(back, at, r, global.contact));
@@ -325,7 +434,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     }
     if (how.fields)
       read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out,
-                       !how.check && !how.write_rows);
+                       field_arrays(*parts_, how));
     if (how.check) checks.read(back, at, global, d.owned(r));
     if (how.write_rows) {
       const std::string failed = read_rank_rows(back, at, r, parts_->placement, placed_);
@@ -333,6 +442,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     }
   }
   if (!write_failure.empty()) throw std::runtime_error(write_failure);
+  if (how.head) counts_.bonds = bond_count;
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);
   return out;

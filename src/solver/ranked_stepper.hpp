@@ -43,8 +43,10 @@ struct Exchange {
   bool report = false;        // each rank's times and memory, without its slice
   bool estimate = false;      // every rank estimates the stable step on its part
   bool time_step = false;     // before the steps: rank 0 gives every rank dt
+  bool head = false;          // each rank's bodies, loads and bond facts (no whole copy)
+  bool describe = false;      // the owner of a particle rank 0 names describes it
   // Whether each rank sends rank 0 a message after the steps.
-  bool answered() const { return bring_back || fields || write_rows || report; }
+  bool answered() const { return bring_back || fields || write_rows || report || head || describe; }
 };
 
 // Rank 0's link to the other ranks: the case, then a command per batch, then
@@ -84,6 +86,15 @@ class RankedStepper final : public Stepper {
   // keeping its own. Throws InputError when the case cannot be decomposed
   // (every follower is told, and waits to be released).
   RankedStepper(const CaseSpec& spec, const SolverState& global, Followers& followers);
+  // Rank 0 with no copy of the particles: every rank, rank 0 too, sets its
+  // own part up from the case and a cut made from the case alone
+  // (decompose_count), and `head` becomes what rank 0 keeps of the whole
+  // state: every body's range, the probes, every rigid body and load (from
+  // the rank that owns it), the damping. Every read of the state then comes
+  // from the ranks (checks, history rows, frames, checkpoints, a blow-up's
+  // particle); counts() has the particles and bonds. For a case the set-up
+  // by part covers (part_set_up_covers).
+  RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head);
   ~RankedStepper() override;
 
   // Every rank estimates on its own part; each gets the one-process bits.
@@ -116,6 +127,9 @@ class RankedStepper final : public Stepper {
   bool places_rows() const override { return true; }
   PlacedRows place_rows(SolverState& global, const RowPlacement& placement,
                         PhaseTimers& timers) override;
+  bool holds_particles() const override { return whole_; }
+  RunCounts counts() const override { return counts_; }
+  ParticleFacts particle_facts(SolverState& global, std::size_t i) override;
   // Each rank's report, asked now, with the slices' moves so far.
   std::vector<RankTimes> rank_times(SolverState& global) override;
   // Each rank steps with its threads forking and joining per loop.
@@ -143,6 +157,9 @@ class RankedStepper final : public Stepper {
   PlacedRows placed_;                    // of the last placement's round
   std::int64_t good_step_ = -1;          // of the ranks' last good slices
   double good_peak_work_ = 0;
+  bool whole_ = true;          // rank 0 holds a copy of the particles and bonds
+  RunCounts counts_;           // without it, what it records of them
+  ParticleFacts described_;    // of the last describe round
   bool ranks_ahead_ = false;   // stepped since rank 0's copy was brought back
   bool ranks_behind_ = false;  // rank 0's copy changed since they got it
 };

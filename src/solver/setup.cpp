@@ -11,6 +11,7 @@
 #include "neighbor/bond_search.hpp"
 #include "src/core/region.hpp"
 #include "src/core/region3.hpp"
+#include "src/core/stability.hpp"
 #include "src/core/surface.hpp"
 #include "src/core/surface3.hpp"
 #include "src/solver/contact_setup.hpp"
@@ -180,6 +181,14 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
   }
   add_gas_loads(spec, s);
   return s;
+}
+
+double case_energy_floor(const CaseSpec& spec, const std::vector<Range>& body_ranges) {
+  std::vector<ParticleGroup> groups;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    groups.push_back(
+        {body_ranges[b].size(), spec.materials[static_cast<std::size_t>(spec.bodies[b].material)]});
+  return energy_balance_floor(groups, spec.particle_volume());
 }
 
 void finish_set_up(SolverState& s, const CaseSpec& spec) {

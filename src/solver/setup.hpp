@@ -40,6 +40,10 @@ BondGeometry case_bond_geometry(const CaseSpec& spec);
 void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::size_t b,
                     const Point3& site, std::size_t id);
 
+// The energy balance's floor (energy_balance_floor) of the case's bodies,
+// their storage ranges `body_ranges`.
+double case_energy_floor(const CaseSpec& spec, const std::vector<Range>& body_ranges);
+
 // Each load's first step k (k dt >= its start) and the damping's window;
 // spec.dt must be fixed. A rank's part schedules its own loads likewise.
 void schedule_loads(SolverState& s, const CaseSpec& spec);

@@ -1,6 +1,7 @@
 #include "src/solver/simulation.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -13,6 +14,7 @@
 #include "src/solver/gas_coupling.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/one_rank_stepper.hpp"
+#include "src/solver/part_setup.hpp"
 #include "src/solver/ranked_stepper.hpp"
 #include "src/solver/setup.hpp"
 #include "src/solver/time_step_choice.hpp"
@@ -20,22 +22,31 @@
 namespace mpsolid {
 
 namespace {
-// The one place that chooses how a case steps.
-std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, const SolverState& state,
-                                      Followers* followers) {
+// The one place that chooses how a case steps, and sets `state` up: the
+// whole state, or over MPI ranks where rank 0 needs no copy of it only
+// what rank 0 keeps (the ranks set their parts up).
+std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
+                                      Followers* followers, RankZeroCopy copy,
+                                      PhaseTimers& timers) {
+  if (followers && copy == RankZeroCopy::as_needed && part_set_up_covers(spec) &&
+      spec.compression == 0) {
+    auto t = timers.time(Phase::setup);
+    return std::make_unique<RankedStepper>(spec, *followers, state);
+  }
+  state = set_up(spec, timers);
+  finish_set_up(state, spec);
   if (followers) return std::make_unique<RankedStepper>(spec, state, *followers);
   return std::make_unique<OneRankStepper>(spec, state);
 }
 }  // namespace
 
-Simulation::Simulation(const CaseSpec& spec, Followers* followers) : spec_(spec) {
+Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)
+    : spec_(spec) {
   set_flush_subnormals(spec.flush_subnormals);
-  // Set-up reads no dt: the state is made, then the stepper (over ranks,
+  // Set-up reads no dt: the state and the stepper are made (over ranks,
   // every rank's part), then time.dt = "auto" is chosen by the estimate where
   // it steps, and only then are the loads scheduled.
-  state_ = set_up(spec_, timers_);
-  finish_set_up(state_, spec_);
-  stepper_ = make_stepper(spec_, state_, followers);
+  stepper_ = make_stepper(spec_, state_, followers, copy, timers_);
   if (needs_time_step(spec_)) {
     {
       auto t = timers_.time(Phase::setup);
@@ -46,7 +57,7 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers) : spec_(spec)
   schedule_loads(state_, spec_);
   stepper_->set_time_step(spec_);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
-  energy_floor_ = energy_balance_floor(state_.particles, spec_.particle_volume());
+  energy_floor_ = case_energy_floor(spec_, state_.body_ranges);
   if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
@@ -126,6 +137,8 @@ Simulation::CheckpointSource Simulation::checkpoint_source() {
 }
 
 SolverState& Simulation::state_to_change() {
+  if (!stepper_->holds_particles())
+    throw std::logic_error("state_to_change: rank 0 holds no copy of the particles");
   rank_readings_step_ = -1;
   stepper_->bring_to_rank_zero(state_);
   stepper_->state_changed();
@@ -149,8 +162,29 @@ Diagnostics Simulation::current_diagnostics() {
 }
 
 Diagnostics Simulation::diagnostics() {
+  if (!stepper_->holds_particles()) {
+    // Rank 0 has no particle to read: a check's round gives the figures
+    // (and the readings of a history row at this step).
+    CheckFigures f = stepper_->check_figures(state_, timers_);
+    fields_on_ranks_ = true;
+    rank_readings_ = std::move(f.readings);
+    rank_readings_step_ = state_.step;
+    return f.diagnostics;
+  }
   refresh_fields();
   return current_diagnostics();
+}
+
+std::size_t Simulation::particle_count() const {
+  return stepper_->holds_particles() ? state_.particles.size() : stepper_->counts().particles;
+}
+
+std::size_t Simulation::bond_count() const {
+  return stepper_->holds_particles() ? state_.bonds.entry_count() / 2 : stepper_->counts().bonds;
+}
+
+std::uint64_t Simulation::bond_hash() const {
+  return stepper_->holds_particles() ? state_.bonds.hash() : stepper_->counts().bond_hash;
 }
 
 std::int64_t Simulation::gas_steps() const {

@@ -22,11 +22,18 @@ namespace mpsolid {
 class Followers;
 class GasCoupling;
 
+// Over MPI ranks, whether rank 0 keeps a copy of the particles and bonds:
+// only where it must (`as_needed`: a case with contact, a gas or a pressure
+// load, or compressed frames, whose reads rank 0 does from its copy), or
+// always (`whole`: a resume, which restores the whole checkpoint there).
+enum class RankZeroCopy { as_needed, whole };
+
 class Simulation {
  public:
   // With `followers` (rank 0 of several MPI ranks: src/solver/ranked_stepper.hpp)
   // the case steps over the ranks; without, on this process.
-  explicit Simulation(const CaseSpec& spec, Followers* followers = nullptr);
+  explicit Simulation(const CaseSpec& spec, Followers* followers = nullptr,
+                      RankZeroCopy copy = RankZeroCopy::as_needed);
   ~Simulation();
   Simulation(Simulation&&) noexcept;
   Simulation& operator=(Simulation&&) noexcept;
@@ -49,7 +56,10 @@ class Simulation {
 
   double time() const { return spec_.time_at(state_.step); }
   std::int64_t step() const { return state_.step; }
-  std::size_t particle_count() const { return state_.particles.size(); }
+  std::size_t particle_count() const;
+  // Whether state() holds the particles and bonds (over MPI ranks, rank 0
+  // may keep only the bodies, loads and probes: RankZeroCopy).
+  bool holds_particles() const { return stepper_->holds_particles(); }
 
   const CaseSpec& spec() const { return spec_; }
   // The current state. Over ranks, the particles stepped since the last
@@ -84,8 +94,13 @@ class Simulation {
     RowPlacer placer;
   };
   CheckpointSource checkpoint_source();
-  // The bonds of the run (each once).
-  std::size_t bond_count() const { return state_.bonds.entry_count() / 2; }
+  // The bonds of the run (each once), and the bond table's hash
+  // (BondTable::hash), which a checkpoint keeps.
+  std::size_t bond_count() const;
+  std::uint64_t bond_hash() const;
+  // Particle i (global storage index) of the current state, as a
+  // diagnosis names it (over ranks, from the rank that owns it).
+  ParticleFacts particle_facts(std::size_t i) { return stepper_->particle_facts(state_, i); }
   // The estimate behind time.dt = "auto" (zeros when dt was given).
   const StableStepEstimate& stable_step() const { return stable_step_; }
   // The model's stable-step limit about the current state, estimated where
@@ -132,7 +147,9 @@ class Simulation {
 
   CaseSpec spec_;
   PhaseTimers timers_;
-  // Over ranks, rank 0's copy: current after state() or refresh_fields().
+  // Over ranks, rank 0's copy: current after state() or refresh_fields();
+  // without the particles and bonds when the stepper keeps none there
+  // (Stepper::holds_particles).
   SolverState state_;
   std::unique_ptr<Stepper> stepper_;
   std::unique_ptr<GasCoupling> gas_;
@@ -142,7 +159,7 @@ class Simulation {
   StableStepEstimate stable_step_;
   double initial_energy_ = 0;
   double limit_speed_ = 0;
-  double energy_floor_ = 0;               // the balance's round-off scale (energy_balance_floor)
+  double energy_floor_ = 0;               // the balance's round-off scale (case_energy_floor)
   bool fields_on_ranks_ = false;          // a check over ranks left rank 0's fields stale
   HistoryReadings rank_readings_;         // of the last check over ranks
   std::int64_t rank_readings_step_ = -1;  // its step

@@ -18,6 +18,29 @@
 
 namespace mpsolid {
 
+// One particle as a blow-up's diagnosis names it.
+struct ParticleFacts {
+  std::int64_t id = 0;
+  int body = 0;                 // in the case's order
+  std::vector<double> initial;  // its reference position (x, y, and z in space)
+  std::vector<double> now;      // its position
+  static ParticleFacts of(const ParticleStore& p, std::size_t i) {
+    ParticleFacts f{p.id[i], p.body[i], {p.x0[i], p.y0[i]}, {p.x[i], p.y[i]}};
+    if (p.dimension == 3) {
+      f.initial.push_back(p.z0[i]);
+      f.now.push_back(p.z[i]);
+    }
+    return f;
+  }
+};
+
+// What rank 0 records of the particles and bonds when it holds none of them.
+struct RunCounts {
+  std::size_t particles = 0;
+  std::size_t bonds = 0;        // each once
+  std::uint64_t bond_hash = 0;  // BondTable::hash of the whole table
+};
+
 class Stepper {
  public:
   virtual ~Stepper() = default;
@@ -70,6 +93,17 @@ class Stepper {
   virtual bool places_rows() const { return false; }
   virtual PlacedRows place_rows(SolverState&, const RowPlacement&, PhaseTimers&) {
     throw std::logic_error("place_rows: no ranks to write");
+  }
+  // Whether the state the Simulation holds has the particles and bonds (on
+  // one process, and over MPI ranks unless rank 0 keeps only the bodies,
+  // loads and probes: then counts() has what it records of them).
+  virtual bool holds_particles() const { return true; }
+  virtual RunCounts counts() const { return {}; }
+  // Particle i (global storage index) of the current state: from `state`
+  // (brought up to date), or from the rank that owns it.
+  virtual ParticleFacts particle_facts(SolverState& state, std::size_t i) {
+    bring_to_rank_zero(state);
+    return ParticleFacts::of(state.particles, i);
   }
   // Each rank's times, halo cost and memory so far, for run.json (empty on
   // one rank).

@@ -22,7 +22,9 @@
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
 #    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
-#    times, and its halo time and bytes;
+#    times, and its halo time and bytes, and what rank 0 held: no copy of
+#    the particles for the rod (every rank sets its own part up), a whole
+#    one with contact, compressed frames and a resume;
 #  - the particles stay on their ranks: no slice comes back to rank 0 for a
 #    check, a history row, a frame or a checkpoint (run.json's slice_moves):
 #    each rank writes its own particles' rows of the frames and checkpoints;
@@ -63,6 +65,14 @@ same() {  # same LABEL DIR [SERIAL]: DIR has the serial run's bits (SERIAL: $TMP
   fi
 }
 
+copy_is() {  # copy_is LABEL DIR WANT: what rank 0 held of the particles (run.json)
+  local got
+  got=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["rank_zero_copy"])' \
+    "$2/run.json" 2>&1)
+  [[ $got == "$3" ]] && ok "$1: rank 0 held $3 of the particles" ||
+    fail "$1: run.json's rank_zero_copy is $got (want $3)"
+}
+
 "$BIN" run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/serial" --threads 1 \
   >/dev/null 2>&1 </dev/null || { fail "the serial run failed"; exit 1; }
 
@@ -74,6 +84,7 @@ for ranks in 2 3; do
     continue
   fi
   same "$ranks ranks" "$TMP/ranks$ranks"
+  copy_is "$ranks ranks" "$TMP/ranks$ranks" none
   recorded=$(/usr/bin/python3 -c '
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -133,6 +144,7 @@ slices_move_at_the_reads frequent "a check every 100 steps" 0 "${SPARSE[@]}" \
 # the same numbers.
 slices_move_at_the_reads compressed "compressed frames" 2 "${SPARSE[@]}" \
   --set output.compression=4
+copy_is "compressed frames" "$TMP/compressed" whole
 
 # Ranks x threads: 2 x 2.
 mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2
@@ -159,6 +171,7 @@ cp -r "$TMP/half" "$TMP/half3"
   same "2 ranks, resumed at 1" "$TMP/half" || fail "resume at 1 rank failed: $(cat "$TMP/resume1.err")"
 mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "2 ranks, resumed at 3" "$TMP/half3" || fail "resume at 3 ranks: exit $rc"
+copy_is "a resume at 3 ranks" "$TMP/half3" whole
 
 # A batch system's SIGTERM to the launcher (which forwards it to every
 # rank) stops the run with a checkpoint and releases every rank; the run
@@ -167,7 +180,7 @@ mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
   --set time.end=2e-4 --out "$TMP/term" </dev/null >"$TMP/term.out" 2>"$TMP/term.err" &
 launcher=$!
 for _ in $(seq 200); do [[ -f "$TMP/term/checkpoint.h5" ]] && break; sleep 0.05; done
-sleep 1
+sleep 0.3
 kill -TERM "$launcher"
 waited=0
 while kill -0 "$launcher" 2>/dev/null && [[ $waited -lt 120 ]]; do sleep 0.5; waited=$((waited + 1)); done
@@ -206,6 +219,7 @@ for ranks in 2 3; do
     --out "$TMP/contact$ranks"
   [[ $rc -eq 0 ]] && same "contact at $ranks ranks" "$TMP/contact$ranks" "$TMP/c_serial" ||
     fail "contact at $ranks ranks: exit $rc"
+  copy_is "contact at $ranks ranks" "$TMP/contact$ranks" whole
 done
 # time.dt = "auto" is estimated on every rank's part, contact's bound
 # included: the serial estimate's bits (run.json).

@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "src/core/parallel.hpp"
+#include "src/distributed/bond_table_facts.hpp"
 #include "src/distributed/part_message.hpp"
+#include "src/distributed/thread_ranks.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/part_setup.hpp"
@@ -99,6 +102,69 @@ TEST(PartSetUp, ASpinningCube) {
 }
 TEST(PartSetUp, ATumblingBrick) {
   expect_the_whole_states_parts("cases/tumbling_brick.toml");
+}
+
+// What rank 0 keeps when it holds no particle, from every rank's part set
+// up alone on the cut made from the case (decompose_case): the bond table's
+// count and hash (the ranks hashing in turn, threads as ranks), and every
+// rigid body and load, are the whole state's.
+LocalLayout whole_layout(const SolverState& s) {
+  LocalLayout layout;
+  layout.owned = layout.owned_global = s.particles.all();
+  return layout;
+}
+void expect_the_whole_states_head(const std::string& case_file,
+                                  const std::vector<std::string>& overrides = {}) {
+  const Whole w = whole_state(case_file, overrides);
+  std::vector<double> whole_items;
+  append_owned_items(w.state, whole_layout(w.state), whole_items);
+  for (const int ranks : {2, 3, 5}) {
+    SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
+    const Decomposition d = decompose_case(w.spec, ranks);
+    std::vector<LocalPart> parts;
+    for (int r = 0; r < ranks; ++r) parts.push_back(set_up_part(w.spec, d, r));
+    std::vector<BondTableFacts> facts(static_cast<std::size_t>(ranks));
+    set_thread_count(ranks);
+    ThreadMailboxes boxes(ranks);
+    run_in_team([&] {
+      const auto me = static_cast<int>(team_rank());
+      serial_section([&] {
+        const LocalPart& part = parts[static_cast<std::size_t>(me)];
+        facts[static_cast<std::size_t>(me)] =
+            bond_table_facts(part.state.bonds, part.layout, ThreadRanks(boxes, me));
+      });
+    });
+    set_thread_count(1);
+    for (const BondTableFacts& f : facts) {
+      EXPECT_EQ(f.bonds, w.state.bonds.entry_count() / 2);
+      EXPECT_EQ(f.hash, w.state.bonds.hash());
+    }
+    SolverState head;
+    for (const LocalPart& part : parts) {
+      std::vector<double> mine;
+      append_owned_items(part.state, part.layout, mine);
+      std::size_t at = 0;
+      read_owned_items(mine, at, head);
+      EXPECT_EQ(at, mine.size());
+    }
+    std::vector<StepLoad> in_case_order;  // the ranks' loads in the case's order
+    for (const LoadSpec& l : w.spec.loads)
+      for (const StepLoad& load : head.loads)
+        if (load.name == l.name) in_case_order.push_back(load);
+    head.loads = in_case_order;
+    std::vector<double> head_items;
+    append_owned_items(head, whole_layout(head), head_items);
+    EXPECT_TRUE(head_items == whole_items);
+  }
+}
+
+TEST(PartSetUp, TheRanksGiveTheWholeBondTablesFactsAndEveryBodyAndLoad) {
+  expect_the_whole_states_head("cases/shock_rod.toml",
+                               {"bodies.plate.velocity=[3.0, -1.0]", "bodies.plate.spin=40.0"});
+  expect_the_whole_states_head("cases/holed_plate_grips.toml");
+  expect_the_whole_states_head("cases/shock_rod_3d.toml");
+  expect_the_whole_states_head("cases/tumbling_brick.toml");
+  set_thread_count(available_cores());
 }
 
 // A cut through the plate (a rigid body) is refused both ways.

@@ -1,0 +1,27 @@
+#pragma once
+// What the outputs record of the whole bond table (its bond count and its
+// hash, BondTable::hash, which a checkpoint keeps to refuse a resume with
+// another table) from the ranks' parts, where no rank holds the table: each
+// rank's owned rows are whole and in global order, so the ranks hash them
+// one after the other, array by array, each going on from the previous
+// rank's value: the whole table's bits.
+#include <cstddef>
+#include <cstdint>
+
+#include "src/core/bonds.hpp"
+#include "src/distributed/local_state.hpp"
+#include "src/distributed/rank_group.hpp"
+
+namespace mpsolid {
+
+struct BondTableFacts {
+  std::size_t bonds = 0;   // each once
+  std::uint64_t hash = 0;  // BondTable::hash of the whole table
+};
+
+// Collective over `world`: every rank gets the facts of the whole table
+// from its part's table `local` (owned rows whole) and layout.
+BondTableFacts bond_table_facts(const BondTable& local, const LocalLayout& layout,
+                                const RankGroup& world);
+
+}  // namespace mpsolid
