@@ -19,9 +19,9 @@ std::uint64_t available_memory_bytes() {
   return 0;
 }
 
-void check_memory(const CaseSpec& spec, int threads, std::uint64_t available) {
+void check_memory(const CaseSpec& spec, int threads, std::uint64_t available, double share) {
   if (available == 0) return;
-  const double particles = static_cast<double>(spec.particle_count());
+  const double particles = share * static_cast<double>(spec.particle_count());
   const bool space = spec.dimension == 3;
   const double per_particle =
       (space ? kBytesPerParticleInSpace : kBytesPerParticle) +
@@ -30,12 +30,14 @@ void check_memory(const CaseSpec& spec, int threads, std::uint64_t available) {
   if (needed <= static_cast<double>(available)) return;
   const double gib = 1024.0 * 1024.0 * 1024.0;
   throw InputError(fmt::format(
-      "{}: {:.3g} particles (l0 = {} m) need about {:.3g} GiB at {} thread(s) ({} bytes per "
+      "{}: {:.3g} particles (l0 = {} m{}) need about {:.3g} GiB at {} thread(s) ({} bytes per "
       "particle, bonds included{}); this machine has {:.3g} GiB available: use a larger l0 "
-      "(memory goes as 1 / l0^{}){} or a machine with more memory",
-      spec.source, particles, spec.l0, needed / gib, threads, per_particle,
-      threads > 1 ? ", the threads' parts too" : "", static_cast<double>(available) / gib,
-      spec.dimension, threads > 1 ? ", --threads 1" : ""));
+      "(memory goes as 1 / l0^{}){} or {}",
+      spec.source, particles, spec.l0,
+      share < 1 ? fmt::format(", {:.3g} of the case: this machine's ranks' share", share) : "",
+      needed / gib, threads, per_particle, threads > 1 ? ", the threads' parts too" : "",
+      static_cast<double>(available) / gib, spec.dimension, threads > 1 ? ", --threads 1" : "",
+      share < 1 ? "more machines" : "a machine with more memory"));
 }
 
 }  // namespace mpsolid

@@ -27,7 +27,9 @@ inline constexpr double kPartBytesPerParticleInSpace = 1500;
 std::uint64_t available_memory_bytes();
 
 // Throws InputError when the case's estimate at `threads` threads exceeds
-// `available` bytes (a 0 `available` skips the check).
-void check_memory(const CaseSpec& spec, int threads, std::uint64_t available);
+// `available` bytes (a 0 `available` skips the check). `share`: the part
+// of the case this machine holds (over MPI ranks with no whole copy on
+// rank 0, its ranks' share of all the ranks).
+void check_memory(const CaseSpec& spec, int threads, std::uint64_t available, double share = 1.0);
 
 }  // namespace mpsolid

@@ -370,7 +370,12 @@ void refuse_earlier_results(const RunOptions& options) {
 
 int run_case(const CaseSpec& spec, const RunOptions& options) {
   RunFacts facts = begin_segment(options, 0);
-  check_memory(spec, facts.threads, available_memory_bytes());
+  // Over ranks where rank 0 keeps no copy, this machine holds its ranks'
+  // share of the case.
+  const Communicator& world = Communicator::world();
+  const bool shared = options.followers && !rank_zero_needs_copy(spec, RankZeroCopy::as_needed);
+  check_memory(spec, facts.threads, available_memory_bytes(),
+               shared ? static_cast<double>(world.node_size()) / world.size() : 1.0);
   // An existing folder is locked and checked before the set-up (seconds to
   // minutes on a large case); a new one once it is made.
   std::optional<FolderLock> lock;

@@ -147,7 +147,12 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  world_slot() = new Communicator(rank, size);
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
+  int node_size = 1;
+  MPI_Comm_size(node, &node_size);
+  MPI_Comm_free(&node);
+  world_slot() = new Communicator(rank, size, node_size);
 }
 
 MpiSession::~MpiSession() {

@@ -20,6 +20,8 @@ class Communicator final : public RankGroup {
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
+  // The ranks on this rank's node (sharing its memory), this one included.
+  int node_size() const { return node_size_; }
   std::vector<double> all_gather(const std::vector<double>& mine) const override;
   void exchange(const std::vector<int>& peers, const std::vector<std::vector<double>>& out,
                 std::vector<std::vector<double>>& in) const override;
@@ -37,8 +39,9 @@ class Communicator final : public RankGroup {
   [[noreturn]] void abort(int code) const;
 
  private:
-  Communicator(int rank, int size) : rank_(rank), size_(size) {}
-  int rank_ = 0, size_ = 1;
+  Communicator(int rank, int size, int node_size = 1)
+      : rank_(rank), size_(size), node_size_(node_size) {}
+  int rank_ = 0, size_ = 1, node_size_ = 1;
   friend class MpiSession;
 };
 

@@ -28,8 +28,7 @@ namespace {
 std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
                                       Followers* followers, RankZeroCopy copy,
                                       PhaseTimers& timers) {
-  if (followers && copy == RankZeroCopy::as_needed && part_set_up_covers(spec) &&
-      spec.compression == 0) {
+  if (followers && !rank_zero_needs_copy(spec, copy)) {
     auto t = timers.time(Phase::setup);
     return std::make_unique<RankedStepper>(spec, *followers, state);
   }
@@ -39,6 +38,10 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
   return std::make_unique<OneRankStepper>(spec, state);
 }
 }  // namespace
+
+bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy) {
+  return copy == RankZeroCopy::whole || !part_set_up_covers(spec) || spec.compression != 0;
+}
 
 Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)
     : spec_(spec) {

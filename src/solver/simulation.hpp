@@ -27,6 +27,8 @@ class GasCoupling;
 // load, or compressed frames, whose reads rank 0 does from its copy), or
 // always (`whole`: a resume, which restores the whole checkpoint there).
 enum class RankZeroCopy { as_needed, whole };
+// Whether rank 0 of several keeps the whole copy for `spec` asked `copy`.
+bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy);
 
 class Simulation {
  public:
