@@ -35,21 +35,28 @@ struct HeldSite {
 };
 
 // The sites of the owned range `mine` and every site within `reach` of
-// their box, in global storage order.
+// the box of the owned sites of one body, in global storage order. A bond
+// joins sites closer than the reach, so every partner of an owned site lies
+// within reach of its body's box; one box per body keeps a small body that
+// spans the case (a wall, a plate) from pulling in every site beside it.
 std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout, Range mine,
                                  double reach) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 3> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  struct Box {
+    std::array<double, 3> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  };
+  std::vector<Box> boxes;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const Range r = layout.range[b];
     if (!overlaps(r, mine)) continue;
+    Box& box = boxes.emplace_back();
     visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
       const std::size_t g = r.begin + k;
       if (g < mine.begin || g >= mine.end) return;
       const double c[3] = {at.x, at.y, at.z};
       for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], c[a]);
-        hi[a] = std::max(hi[a], c[a]);
+        box.lo[a] = std::min(box.lo[a], c[a]);
+        box.hi[a] = std::max(box.hi[a], c[a]);
       }
     });
   }
@@ -59,9 +66,13 @@ std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout,
     visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
       const std::size_t g = r.begin + k;
       const double c[3] = {at.x, at.y, at.z};
-      bool near = true;
-      for (int a = 0; a < 3; ++a) near = near && c[a] >= lo[a] - reach && c[a] <= hi[a] + reach;
-      if (near || (g >= mine.begin && g < mine.end)) out.push_back({g, b, k, at});
+      bool near = g >= mine.begin && g < mine.end;
+      for (std::size_t n = 0; n < boxes.size() && !near; ++n) {
+        near = true;
+        for (int a = 0; a < 3; ++a)
+          near = near && c[a] >= boxes[n].lo[a] - reach && c[a] <= boxes[n].hi[a] + reach;
+      }
+      if (near) out.push_back({g, b, k, at});
     });
   }
   std::sort(out.begin(), out.end(),
