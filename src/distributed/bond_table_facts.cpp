@@ -8,6 +8,15 @@
 namespace mpsolid {
 
 namespace {
+// 64 bits as two exact doubles, and back.
+void append_bits(std::uint64_t v, std::vector<double>& out) {
+  out.push_back(static_cast<double>(v >> 32));
+  out.push_back(static_cast<double>(v & 0xffffffffu));
+}
+std::uint64_t read_bits(const std::vector<double>& in, std::size_t at) {
+  return (static_cast<std::uint64_t>(in.at(at)) << 32) | static_cast<std::uint64_t>(in.at(at + 1));
+}
+
 // The hash going on from `value` through every rank's bytes in rank order:
 // rank r takes rank r - 1's value, adds its own and hands it on, in one
 // collective round per rank (every rank makes the same calls, as the
@@ -19,16 +28,24 @@ std::uint64_t hash_in_rank_order(const RankGroup& world, std::uint64_t value,
     if (turn == world.rank()) {
       Fnv1a h(value);
       add_mine(h);
-      // 64 bits as two exact doubles.
-      mine = {static_cast<double>(h.value() >> 32), static_cast<double>(h.value() & 0xffffffffu)};
+      append_bits(h.value(), mine);
     }
-    const std::vector<double> handed = world.all_gather(mine);
-    value = (static_cast<std::uint64_t>(handed.at(0)) << 32) |
-            static_cast<std::uint64_t>(handed.at(1));
+    value = read_bits(world.all_gather(mine), 0);
   }
   return value;
 }
 }  // namespace
+
+void BondTableFacts::append_to(std::vector<double>& out) const {
+  out.push_back(static_cast<double>(bonds));
+  append_bits(hash, out);
+}
+
+BondTableFacts BondTableFacts::read(const std::vector<double>& in, std::size_t& at) {
+  BondTableFacts f{static_cast<std::size_t>(in.at(at)), read_bits(in, at + 1)};
+  at += 3;
+  return f;
+}
 
 BondTableFacts bond_table_facts(const BondTable& local, const LocalLayout& layout,
                                 const RankGroup& world) {
@@ -59,9 +76,8 @@ BondTableFacts bond_table_facts(const BondTable& local, const LocalLayout& layou
   const bool space = world.max(local.r0z.empty() ? 0 : 1) == 1;
   for (const std::vector<double>* v : {&local.r0x, &local.r0y, &local.r0z}) {
     if (v == &local.r0z && !space) break;  // the plane's hash as it always was
-    h = hash_in_rank_order(world, h, [&](Fnv1a& f) {
-      f.bytes(v->data() + first, (end - first) * sizeof(double));
-    });
+    h = hash_in_rank_order(
+        world, h, [&](Fnv1a& f) { f.bytes(v->data() + first, (end - first) * sizeof(double)); });
   }
   return {static_cast<std::size_t>(total / 2), h};
 }

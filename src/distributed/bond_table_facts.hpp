@@ -7,6 +7,7 @@
 // rank's value: the whole table's bits.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "src/core/bonds.hpp"
 #include "src/distributed/local_state.hpp"
@@ -17,6 +18,10 @@ namespace mpsolid {
 struct BondTableFacts {
   std::size_t bonds = 0;   // each once
   std::uint64_t hash = 0;  // BondTable::hash of the whole table
+
+  // As doubles for a message (the hash as two exact halves), and back.
+  void append_to(std::vector<double>& out) const;
+  static BondTableFacts read(const std::vector<double>& in, std::size_t& at);
 };
 
 // Collective over `world`: every rank gets the facts of the whole table

@@ -43,4 +43,11 @@ class RankGroup {
   }
 };
 
+// Rank 0's `value`, on every rank (one all-gather: the others send
+// nothing).
+inline double from_rank_zero(const RankGroup& world, double value) {
+  return world.all_gather(world.rank() == 0 ? std::vector<double>{value} : std::vector<double>{})
+      .at(0);
+}
+
 }  // namespace mpsolid

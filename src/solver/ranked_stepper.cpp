@@ -112,10 +112,7 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
   RankPart& p = parts.part;
   if (how.time_step) {
     // Rank 0's dt (the others send nothing).
-    parts.spec.dt = world
-                        .all_gather(world.rank() == 0 ? std::vector<double>{parts.spec.dt}
-                                                      : std::vector<double>{})
-                        .at(0);
+    parts.spec.dt = from_rank_zero(world, parts.spec.dt);
     schedule_loads(p.local, parts.spec);
   }
   if (how.estimate) parts.estimate = estimate_part_stable_step(parts.spec, p, world);
@@ -131,17 +128,11 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
     // and the bond table's facts (collective).
     parts.whole_on_rank_zero = false;
     append_owned_items(p.local, p.layout, back);
-    const BondTableFacts bonds = bond_table_facts(p.local.bonds, p.layout, world);
-    back.push_back(static_cast<double>(bonds.bonds));
-    back.push_back(static_cast<double>(bonds.hash >> 32));
-    back.push_back(static_cast<double>(bonds.hash & 0xffffffffu));
+    bond_table_facts(p.local.bonds, p.layout, world).append_to(back);
   }
   if (how.describe) {
-    parts.describe = static_cast<std::size_t>(
-        world
-            .all_gather(world.rank() == 0 ? std::vector<double>{static_cast<double>(parts.describe)}
-                                          : std::vector<double>{})
-            .at(0));
+    parts.describe =
+        static_cast<std::size_t>(from_rank_zero(world, static_cast<double>(parts.describe)));
     const Range mine = p.layout.owned_global;
     if (parts.describe >= mine.begin && parts.describe < mine.end) {
       const ParticleFacts f =
@@ -261,7 +252,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
 }
 
 RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head)
-    : followers_(followers), whole_(false) {
+    : followers_(followers) {
   const Communicator& world = followers.world();
   if (!part_set_up_covers(spec))
     throw std::logic_error("RankedStepper: no whole copy for a case the set-up by part leaves out");
@@ -297,8 +288,12 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
 
 RankedStepper::~RankedStepper() = default;
 
+bool RankedStepper::holds_particles() const {
+  return parts_->whole_on_rank_zero;
+}
+
 ParticleFacts RankedStepper::particle_facts(SolverState& global, std::size_t i) {
-  if (whole_) return Stepper::particle_facts(global, i);
+  if (holds_particles()) return Stepper::particle_facts(global, i);
   parts_->describe = i;
   exchange(global, 0, {.describe = true});
   return described_;
@@ -379,7 +374,8 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     world.broadcast(text);
   }
   if (how.send_slices) {
-    if (!whole_) throw std::logic_error("RankedStepper: slices to send, but rank 0 holds none");
+    if (!holds_particles())
+      throw std::logic_error("RankedStepper: slices to send, but rank 0 holds none");
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
       StateSlice::append(global, d.owned(r), slice);
@@ -399,16 +395,13 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   std::vector<OrderedSumPart<1>> energy_parts;
   RankChecks checks(p.extent_ranges.size());
   std::string write_failure;  // the first rank's that could not write its rows
-  std::size_t bond_count = 0;
+  BondTableFacts bonds;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
     std::size_t at = 0;
     if (how.head) {
       read_owned_items(back, at, global);
-      bond_count = static_cast<std::size_t>(back.at(at));
-      counts_.bond_hash = (static_cast<std::uint64_t>(back.at(at + 1)) << 32) |
-                          static_cast<std::uint64_t>(back.at(at + 2));
-      at += 3;
+      bonds = BondTableFacts::read(back, at);  // the same on every rank
     }
     if (how.describe && back.at(at++) != 0.0) {
       described_.id = static_cast<std::int64_t>(back.at(at));
@@ -442,7 +435,10 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     }
   }
   if (!write_failure.empty()) throw std::runtime_error(write_failure);
-  if (how.head) counts_.bonds = bond_count;
+  if (how.head) {
+    counts_.bonds = bonds.bonds;
+    counts_.bond_hash = bonds.hash;
+  }
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);
   return out;

@@ -127,7 +127,7 @@ class RankedStepper final : public Stepper {
   bool places_rows() const override { return true; }
   PlacedRows place_rows(SolverState& global, const RowPlacement& placement,
                         PhaseTimers& timers) override;
-  bool holds_particles() const override { return whole_; }
+  bool holds_particles() const override;
   RunCounts counts() const override { return counts_; }
   ParticleFacts particle_facts(SolverState& global, std::size_t i) override;
   // Each rank's report, asked now, with the slices' moves so far.
@@ -157,7 +157,6 @@ class RankedStepper final : public Stepper {
   PlacedRows placed_;                    // of the last placement's round
   std::int64_t good_step_ = -1;          // of the ranks' last good slices
   double good_peak_work_ = 0;
-  bool whole_ = true;          // rank 0 holds a copy of the particles and bonds
   RunCounts counts_;           // without it, what it records of them
   ParticleFacts described_;    // of the last describe round
   bool ranks_ahead_ = false;   // stepped since rank 0's copy was brought back
