@@ -1,19 +1,22 @@
 #pragma once
 // A run over several MPI ranks (docs/mpi.md). Rank 0 runs the command line
-// as always (the case, the set-up, the run loop, every check and output)
-// and keeps a copy of the whole state; the other ranks follow it and hold
-// only their part. Rank 0 sends each follower the case and its part once;
-// then every rank steps its own particles (the decomposed step) in batches
-// that rank 0 commands. The particles stay on their ranks between batches:
-// their slices come back to rank 0 only when its checks or outputs read the
-// state, and go out again only when rank 0 changed it. Rank 0's checks and
-// outputs read the whole state as in a one-rank run: the same bits at any
-// rank count.
+// as always (the case, the set-up, the run loop, every check and output);
+// the other ranks follow it and hold only their part. Rank 0 sends each
+// follower the case and the cut (or, for a case with contact, a gas or a
+// pressure load, its part) once; then every rank steps its own particles
+// (the decomposed step) in batches that rank 0 commands. Where the case
+// allows, rank 0 keeps no copy of the particles, only the bodies, loads
+// and probes (RankZeroCopy, src/solver/simulation.hpp), and every read of
+// the particles comes from the ranks: checks and history rows from their
+// shares, frames and checkpoints written by every rank in place
+// (src/solver/rank_rows.hpp), a blow-up's particle from its owner.
+// Otherwise rank 0 keeps a whole copy, whose slices come back only when
+// its checks or outputs read the state and go out again only when it
+// changed it. Either way: the same bits at any rank count.
 //
 // Every model and contact are decomposed, each rigid or loaded body owned
-// by one rank. Frames and checkpoints need no slice either: each rank
-// writes its own particles' rows in place (src/solver/rank_rows.hpp). The command line makes rank
-// 0's Followers; a Simulation given them steps through a RankedStepper.
+// by one rank. The command line makes rank 0's Followers; a Simulation
+// given them steps through a RankedStepper.
 #include <cstdint>
 #include <memory>
 #include <string>

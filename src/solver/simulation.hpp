@@ -46,7 +46,8 @@ class Simulation {
   // Recomputes the position-dependent fields (half angles, strain, pressure)
   // for the current state, as outputs and diagnostics need.
   void refresh_fields();
-  // Energies and momenta of the current state (calls refresh_fields).
+  // Energies and momenta of the current state (calls refresh_fields; over
+  // ranks with no copy on rank 0, a check's round on the ranks).
   Diagnostics diagnostics();
   // The blow-up checks of the current state (calls refresh_fields): finite
   // values, the model's integrity (inverted bond or collapsed J), speed
