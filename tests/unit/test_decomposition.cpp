@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <cstring>
@@ -90,6 +91,33 @@ TEST(Decomposition, BodiesKeptWholeAreNeverCut) {
   }
   EXPECT_EQ(kept.starts.back(), s.bonds.particle_count());
   EXPECT_TRUE(std::is_sorted(kept.starts.begin(), kept.starts.end()));
+}
+
+// The cut from the particle count alone (no bond table): the cut of unit
+// costs, balanced to within a particle, a body kept whole moved to its start.
+TEST(Decomposition, TheCutFromTheCountIsTheCutOfUnitCosts) {
+  for (const std::size_t n : {0u, 1u, 7u, 1000u, 123457u})
+    for (const int ranks : {1, 2, 3, 5, 16}) {
+      const Range whole{n / 3, n / 3 + n / 4};
+      for (const std::vector<Range>& keep : {std::vector<Range>{}, std::vector<Range>{whole}}) {
+        const Decomposition d = decompose_count(n, ranks, keep);
+        EXPECT_EQ(d.starts, decompose_costs(std::vector<double>(n, 1.0), ranks, keep).starts)
+            << n << " particles, " << ranks << " ranks";
+        ASSERT_EQ(d.starts.size(), static_cast<std::size_t>(ranks) + 1);
+        EXPECT_EQ(d.starts.front(), 0u);
+        EXPECT_EQ(d.starts.back(), n);
+        for (int r = 0; r < ranks; ++r) {
+          const Range mine = d.owned(r);
+          if (keep.empty()) {
+            // Balanced to within one particle either way of n / ranks.
+            EXPECT_LE(std::abs(static_cast<double>(mine.size()) - static_cast<double>(n) / ranks),
+                      1.0);
+          } else {
+            EXPECT_FALSE(mine.begin > whole.begin && mine.begin < whole.end) << mine.begin;
+          }
+        }
+      }
+    }
 }
 
 TEST(Decomposition, HaloHoldsExactlyThePartnersARankDoesNotOwn) {
