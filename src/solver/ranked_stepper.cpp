@@ -278,11 +278,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   head.damping = mine.damping;
   head.step = mine.step;
   exchange(head, 0, {.head = true});
-  std::vector<StepLoad> in_case_order;
-  for (const LoadSpec& l : spec.loads)
-    for (StepLoad& load : head.loads)
-      if (load.name == l.name) in_case_order.push_back(std::move(load));
-  head.loads = std::move(in_case_order);
+  put_loads_in_case_order(spec, head.loads);
   counts_.particles = cut.starts.back();
 }
 

@@ -196,6 +196,14 @@ void finish_set_up(SolverState& s, const CaseSpec& spec) {
   apply_initial_motion(s, spec, model_info(spec.model).uses_rotation);
 }
 
+void put_loads_in_case_order(const CaseSpec& spec, std::vector<StepLoad>& loads) {
+  std::vector<StepLoad> ordered;
+  for (const LoadSpec& l : spec.loads)
+    for (StepLoad& load : loads)
+      if (load.name == l.name) ordered.push_back(std::move(load));
+  loads = std::move(ordered);
+}
+
 void schedule_loads(SolverState& s, const CaseSpec& spec) {
   // The first step k with k dt >= t.
   const auto first_step_at = [&](double t) {

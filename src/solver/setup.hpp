@@ -44,6 +44,9 @@ void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::
 // their storage ranges `body_ranges`.
 double case_energy_floor(const CaseSpec& spec, const std::vector<Range>& body_ranges);
 
+// `loads` (some of the case's, in any order) in the case's order.
+void put_loads_in_case_order(const CaseSpec& spec, std::vector<StepLoad>& loads);
+
 // Each load's first step k (k dt >= its start) and the damping's window;
 // spec.dt must be fixed. A rank's part schedules its own loads likewise.
 void schedule_loads(SolverState& s, const CaseSpec& spec);

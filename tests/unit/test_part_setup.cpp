@@ -147,11 +147,7 @@ void expect_the_whole_states_head(const std::string& case_file,
       read_owned_items(mine, at, head);
       EXPECT_EQ(at, mine.size());
     }
-    std::vector<StepLoad> in_case_order;  // the ranks' loads in the case's order
-    for (const LoadSpec& l : w.spec.loads)
-      for (const StepLoad& load : head.loads)
-        if (load.name == l.name) in_case_order.push_back(load);
-    head.loads = in_case_order;
+    put_loads_in_case_order(w.spec, head.loads);
     std::vector<double> head_items;
     append_owned_items(head, whole_layout(head), head_items);
     EXPECT_TRUE(head_items == whole_items);
