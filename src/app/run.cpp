@@ -421,11 +421,19 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   if (spec.step_count() < checkpoint.step)
     throw InputError(fmt::format("time.end = {} s is before the checkpoint (t = {} s, step {})",
                                  spec.end, at, checkpoint.step));
-  if (spec.step_count() == checkpoint.step)
-    throw InputError(fmt::format(
-        "{}: the run already reached its end (t = {} s, step {}); continue it with --set "
-        "time.end=LATER",
-        path.string(), at, checkpoint.step));
+  // A run killed after its last checkpoint but before run.json is finished
+  // by a resume of no steps.
+  if (spec.step_count() == checkpoint.step) {
+    if (run_report_completes(options.out_dir, checkpoint))
+      throw InputError(fmt::format(
+          "{}: the run already reached its end (t = {} s, step {}); continue it with --set "
+          "time.end=LATER",
+          path.string(), at, checkpoint.step));
+    fmt::print(stderr,
+               "mpsolid: note: the run reached its end (step {}) but stopped before writing "
+               "run.json; finishing it\n",
+               checkpoint.step);
+  }
 
   RunFacts facts = begin_segment(options, checkpoint.step);
   check_memory(spec, facts.threads, available_memory_bytes());

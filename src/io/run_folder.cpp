@@ -100,6 +100,18 @@ std::string earlier_results(const std::filesystem::path& dir) {
   return text;
 }
 
+bool run_report_completes(const std::filesystem::path& dir, const Checkpoint& last) {
+  try {
+    std::ifstream in(dir / "run.json");
+    const Json report = Json::parse(in);
+    return report.at("outcome").get<std::string>() == outcome_name(Outcome::completed) &&
+           report.at("final_step").get<std::int64_t>() == last.step &&
+           report.at("segments").size() >= last.segments.size();
+  } catch (const std::exception&) {
+    return false;  // missing or unreadable: not written after `last`
+  }
+}
+
 RunFolder::RunFolder(const std::filesystem::path& dir, const SolverState& state,
                      const CaseSpec& spec, std::size_t particles, std::uint64_t bond_hash)
     : dir_(prepare_fresh(dir)),

@@ -33,6 +33,11 @@ std::string abandon_failed_run(const std::filesystem::path& dir, const std::stri
 // there are none.
 std::string earlier_results(const std::filesystem::path& dir);
 
+// Whether `dir`'s run.json records the run completed at checkpoint `last`'s
+// step, every segment `last` lists included: false for a run killed after its
+// last checkpoint but before run.json was written.
+bool run_report_completes(const std::filesystem::path& dir, const Checkpoint& last);
+
 class RunFolder {
  public:
   // A fresh run in `dir` (created if needed).

@@ -5,7 +5,8 @@
 #    uninterrupted run, also at another thread count;
 #  - a run killed (SIGKILL) at random moments, resumed after each kill, ends
 #    with the same history.csv, frames and final state as an uninterrupted
-#    run, bit for bit (tests/tools/compare_runs.py);
+#    run, bit for bit (tests/tools/compare_runs.py); one killed after its last
+#    checkpoint but before run.json is finished by a resume of no steps;
 #  - a resume can go past the old end: run to T, resume to 2T = run to 2T;
 #    also with contact, stopped mid-collision (cases/colliding_blocks.toml),
 #    and in space (cases/spinning_cube.toml, a quaternion per particle; a
@@ -95,9 +96,10 @@ for signal in INT TERM; do
   "$BIN" run "$CASE" "${SHORT[@]}" --out "$dir" --threads 1 </dev/null >"$TMP/stop_$signal.out" \
     2>"$TMP/stop_$signal.err" &
   pid=$!
-  # Wait for the first checkpoint, then a little more.
-  for _ in $(seq 100); do [[ -f "$dir/checkpoint.h5" ]] && break; sleep 0.05; done
-  sleep 0.3
+  # Signal soon after the first checkpoint (step 300): the whole run takes
+  # about 0.4 s on one thread of a 2-vCPU VM.
+  for _ in $(seq 500); do [[ -f "$dir/checkpoint.h5" ]] && break; sleep 0.01; done
+  sleep 0.05
   kill -"$signal" "$pid"
   wait "$pid"
   rc=$?
@@ -152,9 +154,20 @@ echo "kill moments from seed $seed (MPSOLID_TEST_SEED=$seed reproduces them)"
 kills=0
 attempt=0
 done_ok=0
+# completed DIR: run.json records the run completed (a kill can come after it
+# is written, while the summary prints).
+completed() {
+  $PY -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["outcome"] != "completed")' \
+    "$1/run.json" 2>/dev/null
+}
 while [[ $attempt -lt 12 ]]; do
   attempt=$((attempt + 1))
   threads=$((RANDOM % 2 + 1))
+  if completed "$KILLED"; then
+    done_ok=1
+    echo "  killed after run.json recorded the run completed"
+    break
+  fi
   if [[ -f "$KILLED/checkpoint.h5" ]]; then
     cmd=(resume "$KILLED" --threads "$threads")
   else
@@ -195,6 +208,23 @@ if [[ $done_ok -eq 1 ]]; then
 else
   fail "the killed run never completed"
 fi
+
+# ---- killed after the last checkpoint, before run.json ---------------------------
+
+FINISH=$TMP/finish
+cp -r "$REF" "$FINISH" && rm "$FINISH/run.json"
+mp finish resume "$FINISH"
+if [[ $rc -eq 0 ]] && completed "$FINISH" && grep -q "finishing it" "$TMP/finish.err"; then
+  ok "killed before run.json: resume finishes it (exit 0, run.json completed)"
+  same_as_reference "killed before run.json" "$FINISH"
+else
+  fail "killed before run.json: resume exited $rc or run.json does not record completion"
+  show finish
+fi
+mp finish_again resume "$FINISH"
+[[ $rc -eq 2 ]] && grep -q "already reached its end" "$TMP/finish_again.err" &&
+  ok "finished: a second resume is refused (already reached its end)" ||
+  { fail "finished: a second resume exited $rc"; show finish_again; }
 
 # ---- going past the old end ------------------------------------------------------
 
