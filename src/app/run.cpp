@@ -358,6 +358,13 @@ std::filesystem::path default_out_dir(const std::string& case_name,
                      static_cast<std::uint32_t>(h.value() ^ (h.value() >> 32)));
 }
 
+// The share of the case this machine holds: over ranks where rank 0 keeps
+// no copy (`spread`), its ranks' share; otherwise all of it (rank 0's copy).
+double machine_share(bool spread) {
+  const Communicator& world = Communicator::world();
+  return spread ? static_cast<double>(world.node_size()) / world.size() : 1.0;
+}
+
 // Refuses a folder that holds an earlier run's results, unless --force.
 void refuse_earlier_results(const RunOptions& options) {
   if (options.force) return;
@@ -370,12 +377,9 @@ void refuse_earlier_results(const RunOptions& options) {
 
 int run_case(const CaseSpec& spec, const RunOptions& options) {
   RunFacts facts = begin_segment(options, 0);
-  // Over ranks where rank 0 keeps no copy, this machine holds its ranks'
-  // share of the case.
-  const Communicator& world = Communicator::world();
-  const bool shared = options.followers && !rank_zero_needs_copy(spec, RankZeroCopy::as_needed);
-  check_memory(spec, facts.threads, available_memory_bytes(),
-               shared ? static_cast<double>(world.node_size()) / world.size() : 1.0);
+  check_memory(
+      spec, facts.threads, available_memory_bytes(),
+      machine_share(options.followers && !rank_zero_needs_copy(spec, RankZeroCopy::as_needed)));
   // An existing folder is locked and checked before the set-up (seconds to
   // minutes on a large case); a new one once it is made.
   std::optional<FolderLock> lock;
@@ -415,7 +419,9 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
           "to change anything else)",
           o, fmt::join(kResumeKeys, ", ")));
   }
-  const Checkpoint checkpoint = read_checkpoint(path);
+  // Its particle rows first only located: over ranks where rank 0 needs no
+  // copy, each rank reads its own.
+  Checkpoint checkpoint = read_checkpoint(path, ParticleRows::placed);
   const CaseSpec spec = load_case_text(checkpoint.case_toml, path.string(), overrides);
   const double at = spec.time_at(checkpoint.step);
   if (spec.step_count() < checkpoint.step)
@@ -436,10 +442,25 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   }
 
   RunFacts facts = begin_segment(options, checkpoint.step);
-  check_memory(spec, facts.threads, available_memory_bytes());
-  // The checkpoint is restored on rank 0, which keeps the whole copy.
-  Simulation sim(spec, options.followers, RankZeroCopy::whole);
-  restore_state(sim.state_to_change(), checkpoint, path.string());
+  const bool by_rows = options.followers && !checkpoint.particle_offsets.empty() &&
+                       !rank_zero_needs_copy(spec, RankZeroCopy::as_needed);
+  check_memory(spec, facts.threads, available_memory_bytes(), machine_share(by_rows));
+  if (!by_rows) checkpoint = read_checkpoint(path);  // restored whole on rank 0
+  Simulation sim(spec, options.followers, by_rows ? RankZeroCopy::as_needed : RankZeroCopy::whole);
+  if (by_rows)
+    check_placed_content(
+        checkpoint,
+        sim.restore_without_copy(
+               [&](SolverState& head) {
+                 restore_state_without_particles(head, sim.particle_count(), sim.bond_hash(),
+                                                 checkpoint, path.string());
+               },
+               {RowPlacement::Content::restore, std::filesystem::absolute(path).string(),
+                checkpoint.particle_offsets})
+            .array_hashes,
+        path.string());
+  else
+    restore_state(sim.state_to_change(), checkpoint, path.string());
   try {
     sim.restore_gas_saved(checkpoint.gas);
   } catch (const InputError& e) {

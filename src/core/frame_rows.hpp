@@ -85,15 +85,17 @@ RowValues frame_rows(const RowLayout& field, const ParticleStore& p,
 // What every rank writes in place into a file rank 0 laid out: a frame's
 // datasets (frame_row_layout) or a checkpoint's particle arrays
 // (state_arrays), each a contiguous dataset of native numbers whose row for
-// id k lies at offset + k * row_bytes.
+// id k lies at offset + k * row_bytes; or, to restore a checkpoint, reads
+// from its particle arrays.
 struct RowPlacement {
-  enum class Content : std::int8_t { frame, checkpoint };
+  enum class Content : std::int8_t { frame, checkpoint, restore };
   Content content = Content::frame;
   std::string file;
   std::vector<std::uint64_t> offsets;  // one per dataset, in their order
 };
 // What the ranks report of a placement: a checkpoint's particle arrays'
-// hashes (placed_array_hash: each array's terms summed over the ranks).
+// hashes (placed_array_hash: each array's terms summed over the ranks), as
+// written or as read.
 struct PlacedRows {
   std::vector<std::uint64_t> array_hashes;
 };

@@ -26,15 +26,17 @@ struct IdRuns {
 };
 IdRuns id_runs(const std::vector<std::int32_t>& ids, Range particles);
 
-// A file open for writing rows in place. Failures (a missing file, a full
-// disk) throw PlacedRowsError with the file's name and the system's reason.
+// A file open for writing rows in place, or for reading them (a resume, each
+// rank its own). Failures (a missing file, a full disk, a file cut short)
+// throw PlacedRowsError with the file's name and the system's reason.
 struct PlacedRowsError : std::runtime_error {
   using std::runtime_error::runtime_error;
   int error_number = 0;
 };
 class PlacedFile {
  public:
-  explicit PlacedFile(const std::string& path);
+  enum class Access : std::int8_t { write, read };
+  explicit PlacedFile(const std::string& path, Access access = Access::write);
   ~PlacedFile();
   PlacedFile(const PlacedFile&) = delete;
   PlacedFile& operator=(const PlacedFile&) = delete;
@@ -42,13 +44,16 @@ class PlacedFile {
   // The members' rows (`row_bytes` each, in the members' order) of a
   // dataset at `offset`.
   void write(std::uint64_t offset, std::size_t row_bytes, const IdRuns& runs, const void* rows);
-  // Flushes the rows to the disk (fsync) and closes the file.
+  // The members' rows of a dataset at `offset` into `rows` (members' order).
+  void read(std::uint64_t offset, std::size_t row_bytes, const IdRuns& runs, void* rows);
+  // Flushes written rows to the disk (fsync) and closes the file.
   void close();
   double bytes() const { return bytes_; }
 
  private:
   [[noreturn]] void fail(const char* what, int error) const;
   std::string path_;
+  Access access_;
   int fd_ = -1;
   double bytes_ = 0;
 };

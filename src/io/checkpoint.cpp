@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <set>
+#include <stdexcept>
 
 #include "build_info.hpp"
 #include "src/core/hash.hpp"
@@ -77,11 +79,6 @@ std::vector<std::uint64_t> array_hashes(const Checkpoint& c) {
   return out;
 }
 
-std::vector<std::string> names_of(const std::vector<NamedArray>& arrays) {
-  std::vector<std::string> names;
-  for (const auto& a : arrays) names.push_back(a.name);
-  return names;
-}
 }  // namespace
 
 std::vector<NamedArray> particle_state_arrays(ParticleStore& p) {
@@ -116,26 +113,31 @@ Checkpoint capture_state(const SolverState& state, bool particle_values) {
   return c;
 }
 
-void restore_state(SolverState& s, const Checkpoint& c, const std::string& source) {
-  ParticleStore& p = s.particles;
+namespace {
+// Throws unless `c` fits the set-up state `s` of a run of `particles`
+// particles whose bond table hashes to `bond_hash`.
+void check_fit(const SolverState& s, std::size_t particles, std::uint64_t bond_hash,
+               const Checkpoint& c, const std::string& source) {
   auto refuse = [&](const std::string& why) {
     throw InputError(fmt::format("{}: the checkpoint does not fit this case: {}", source, why));
   };
-  const std::vector<NamedArray> arrays = particle_state_arrays(p);
+  std::vector<std::string> needed;
+  for (const StateArray& a : state_arrays(s.particles.dimension)) needed.push_back(a.name);
   std::vector<std::string> stored;
   for (const auto& [name, values] : c.particle_arrays) stored.push_back(name);
-  if (stored != names_of(arrays))
+  if (stored != needed)
     refuse(fmt::format("it holds the particle arrays [{}], this build needs [{}]",
-                       fmt::join(stored, ", "), fmt::join(names_of(arrays), ", ")));
+                       fmt::join(stored, ", "), fmt::join(needed, ", ")));
+  if (c.particle_count != static_cast<std::int64_t>(particles))
+    refuse(fmt::format("it has {} particles, the case has {}", c.particle_count, particles));
   for (const auto& [name, values] : c.particle_arrays)
-    if (values.size() != p.size())
-      refuse(fmt::format("it has {} particles, the case has {}", values.size(), p.size()));
-  const std::uint64_t hash = s.bonds.hash();
-  if (hash != c.bond_hash)
+    if (c.particle_offsets.empty() && values.size() != particles)
+      refuse(fmt::format("it has {} particles, the case has {}", values.size(), particles));
+  if (bond_hash != c.bond_hash)
     refuse(fmt::format(
         "the bond table differs (hash {:016x} in the checkpoint, {:016x} here): it was written by "
         "another build ({}) or for another lattice; this build is {} {}",
-        c.bond_hash, hash, c.written_by, build_info::version, build_info::git_commit));
+        c.bond_hash, bond_hash, c.written_by, build_info::version, build_info::git_commit));
   if (c.rigid_bodies.size() != s.rigid_bodies.size())
     refuse(fmt::format("it has {} rigid bodies, the case has {}", c.rigid_bodies.size(),
                        s.rigid_bodies.size()));
@@ -158,13 +160,10 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
       refuse(fmt::format(
           "load '{}' keeps {} values of its surface nodes in the checkpoint, {} in the case",
           c.loads[l].name, c.loads[l].surface_running.size(), s.loads[l].surface.running_size()));
+}
 
-  const std::vector<std::size_t> order = p.storage_of_id();
-  for (std::size_t a = 0; a < arrays.size(); ++a) {
-    const std::vector<double>& by_id = c.particle_arrays[a].second;
-    std::vector<double>& values = *arrays[a].values;
-    for (std::size_t k = 0; k < p.size(); ++k) values[order[k]] = by_id[k];
-  }
+// The bodies, loads, step and peak work of `c` into `s` (checked to fit).
+void restore_items(SolverState& s, const Checkpoint& c) {
   for (std::size_t b = 0; b < c.rigid_bodies.size(); ++b) {
     const RigidBodyState& from = c.rigid_bodies[b];
     RigidBody& to = s.rigid_bodies[b];
@@ -192,6 +191,28 @@ void restore_state(SolverState& s, const Checkpoint& c, const std::string& sourc
   }
   s.step = c.step;
   s.peak_work = c.peak_work;
+}
+}  // namespace
+
+void restore_state(SolverState& s, const Checkpoint& c, const std::string& source) {
+  ParticleStore& p = s.particles;
+  if (!c.particle_offsets.empty())
+    throw std::logic_error("restore_state: a checkpoint read without its particle values");
+  check_fit(s, p.size(), s.bonds.hash(), c, source);
+  const std::vector<NamedArray> arrays = particle_state_arrays(p);
+  const std::vector<std::size_t> order = p.storage_of_id();
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    const std::vector<double>& by_id = c.particle_arrays[a].second;
+    std::vector<double>& values = *arrays[a].values;
+    for (std::size_t k = 0; k < p.size(); ++k) values[order[k]] = by_id[k];
+  }
+  restore_items(s, c);
+}
+
+void restore_state_without_particles(SolverState& s, std::size_t particles, std::uint64_t bond_hash,
+                                     const Checkpoint& c, const std::string& source) {
+  check_fit(s, particles, bond_hash, c, source);
+  restore_items(s, c);
 }
 
 std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c,
@@ -291,7 +312,7 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
   return bytes;
 }
 
-Checkpoint read_checkpoint(const std::filesystem::path& path) {
+Checkpoint read_checkpoint(const std::filesystem::path& path, ParticleRows rows) {
   if (!std::filesystem::exists(path))
     throw InputError(
         fmt::format("{}: no checkpoint (is this the output folder of a run?)", path.string()));
@@ -325,9 +346,28 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     c.segments = file.read_strings("segments");
 
     const h5::Group particles = file.open_group("particles");
-    for (const std::string& name : particles.read_strings("_order"))
-      c.particle_arrays.emplace_back(name,
-                                     particles.read<double>(name, static_cast<std::size_t>(n)));
+    // In place only where every array can be (format 4 hashes them as the
+    // ranks read them).
+    bool placed = rows == ParticleRows::placed && version >= 4;
+    for (const std::string& name : particles.read_strings("_order")) {
+      if (rows == ParticleRows::values) {
+        c.particle_arrays.emplace_back(name,
+                                       particles.read<double>(name, static_cast<std::size_t>(n)));
+        continue;
+      }
+      c.particle_arrays.emplace_back(name, std::vector<double>{});
+      const std::optional<std::uint64_t> offset =
+          particles.placed_offset<double>(name, static_cast<std::size_t>(n));
+      placed = placed && offset.has_value();
+      if (placed) c.particle_offsets.push_back(*offset);
+    }
+    // Those written before damping get their damping_loss from the reading
+    // of the values below.
+    const auto has = [&](const char* name) {
+      return std::any_of(c.particle_arrays.begin(), c.particle_arrays.end(),
+                         [&](const auto& a) { return a.first == name; });
+    };
+    if (!placed || (has("omega") && !has("damping_loss"))) c.particle_offsets.clear();
 
     const h5::Group bodies = file.open_group("rigid_bodies");
     const std::vector<std::string> body_names = bodies.read_strings("names");
@@ -403,10 +443,14 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   } catch (const h5::Error& e) {
     throw InputError(fmt::format("{}: damaged or not a checkpoint ({})", path.string(), e.what()));
   }
-  if (content_hash(c, version, array_hashes(c)) != stored_hash)
-    throw InputError(
-        fmt::format("{}: damaged checkpoint: its contents do not match the hash stored with them",
-                    path.string()));
+  c.content_hash = stored_hash;
+  c.format_version = version;
+  if (rows == ParticleRows::placed) {
+    // Read in place by the ranks, which then hash them; else not read here.
+    if (c.particle_offsets.empty()) c.particle_arrays.clear();
+    return c;
+  }
+  check_placed_content(c, array_hashes(c), path.string());
   // Checkpoints written before damping hold no damping_loss: nothing was lost.
   const auto named = [&](const char* name) {
     return std::find_if(c.particle_arrays.begin(), c.particle_arrays.end(),
@@ -416,6 +460,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     c.particle_arrays.emplace(named("omega") + 1, "damping_loss",
                               std::vector<double>(named("omega")->second.size(), 0.0));
   return c;
+}
+
+void check_placed_content(const Checkpoint& c, const std::vector<std::uint64_t>& array_hashes,
+                          const std::string& source) {
+  if (content_hash(c, c.format_version, array_hashes) != c.content_hash)
+    throw InputError(fmt::format(
+        "{}: damaged checkpoint: its contents do not match the hash stored with them", source));
 }
 
 }  // namespace mpsolid

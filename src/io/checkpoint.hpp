@@ -64,6 +64,13 @@ struct Checkpoint {
   // The gas (a case with [gas]): named arrays, as the gas coupling saves
   // them (src/solver/gas_coupling.hpp); empty without a gas.
   std::vector<std::pair<std::string, std::vector<double>>> gas;
+  // Read with ParticleRows::placed: where each particle array starts in the
+  // file (row of id k at offset + 8 k), empty when they cannot be read in
+  // place; the particle arrays then hold no values, and the stored content
+  // hash waits for the arrays' hashes (check_placed_content).
+  std::vector<std::uint64_t> particle_offsets;
+  std::uint64_t content_hash = 0;
+  std::int64_t format_version = 0;
 };
 
 // The evolving state and its step (the other fields are left empty).
@@ -75,6 +82,13 @@ Checkpoint capture_state(const SolverState& state, bool particle_values = true);
 // Throws InputError, naming `source`, if the checkpoint does not fit: other
 // particle count, state arrays, bodies or loads, or another bond table.
 void restore_state(SolverState& state, const Checkpoint& c, const std::string& source);
+// The same for a state whose particles are elsewhere (over MPI ranks, rank
+// 0's bodies and loads, each rank then reading its own rows): the fit
+// checked against the run's `particles` and `bond_hash`, then the bodies,
+// loads, step and peak work overwritten.
+void restore_state_without_particles(SolverState& state, std::size_t particles,
+                                     std::uint64_t bond_hash, const Checkpoint& c,
+                                     const std::string& source);
 
 // Writes `path` atomically: `path`.tmp, fsync, rename, fsync of the folder.
 // With `placer`, the particle arrays (named in `c`, no values) are reserved
@@ -83,8 +97,21 @@ void restore_state(SolverState& state, const Checkpoint& c, const std::string& s
 std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpoint& c,
                                 const RowPlacer& placer = {});
 
-// Reads and verifies a checkpoint (format, shapes, content hash). Throws
+// How read_checkpoint reads the particle arrays: their values, or only
+// where they lie in the file (`placed`: over MPI ranks each rank reads its
+// own rows; the arrays' names kept, their values left empty).
+enum class ParticleRows : std::int8_t { values, placed };
+
+// Reads and verifies a checkpoint (format, shapes, content hash; with
+// `placed` the content hash once the ranks' rows are hashed). Throws
 // InputError naming the file if it is missing, damaged or not a checkpoint.
-Checkpoint read_checkpoint(const std::filesystem::path& path);
+Checkpoint read_checkpoint(const std::filesystem::path& path,
+                           ParticleRows rows = ParticleRows::values);
+
+// Throws InputError naming `source` unless the content hash stored in a
+// checkpoint read with `placed` matches with its particle arrays' hashes
+// (placed_array_hash, each summed over the ranks' rows).
+void check_placed_content(const Checkpoint& c, const std::vector<std::uint64_t>& array_hashes,
+                          const std::string& source);
 
 }  // namespace mpsolid

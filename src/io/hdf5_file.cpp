@@ -184,6 +184,26 @@ std::uint64_t Group::reserve(const std::string& name, std::size_t rows, std::siz
   return static_cast<std::uint64_t>(offset);
 }
 
+template <class T>
+std::optional<std::uint64_t> Group::placed_offset(const std::string& name, std::size_t rows,
+                                                  std::size_t columns) const {
+  static_assert(kSupported<T>);
+  const DatasetInfo stored = info(name);
+  const std::vector<std::uint64_t> expected =
+      columns == 1 ? std::vector<std::uint64_t>{rows} : std::vector<std::uint64_t>{rows, columns};
+  if (stored.dims != expected || !stored.filter.empty()) return std::nullopt;
+  if (rows == 0) return 0;
+  Handle set(checked(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), "cannot open " + where(name)),
+             H5Dclose);
+  Handle type(checked(H5Dget_type(set), "type of " + where(name)), H5Tclose);
+  if (H5Tequal(type, memory_type<T>()) <= 0) return std::nullopt;  // another byte order or type
+  Handle props(checked(H5Dget_create_plist(set), "properties of " + where(name)), H5Pclose);
+  if (H5Pget_layout(props) != H5D_CONTIGUOUS) return std::nullopt;
+  const haddr_t offset = H5Dget_offset(set);
+  if (offset == HADDR_UNDEF) return std::nullopt;  // never written
+  return static_cast<std::uint64_t>(offset);
+}
+
 DatasetInfo Group::info(const std::string& name) const {
   if (!has(name)) throw Error(fmt::format("{} is missing", where(name)));
   Handle set(checked(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), where(name) + " is not a dataset"),
@@ -333,12 +353,14 @@ bool Group::has_attribute(const std::string& name) const {
   return H5Aexists(id_, name.c_str()) > 0;
 }
 
-#define MPSOLID_H5_INSTANTIATE(T)                                                               \
-  template void Group::write<T>(const std::string&, const std::vector<T>&, std::size_t, int)    \
-      const;                                                                                    \
-  template std::vector<T> Group::read<T>(const std::string&, std::size_t, std::size_t) const;   \
-  template std::uint64_t Group::reserve<T>(const std::string&, std::size_t, std::size_t) const; \
-  template void Group::set_attribute<T>(const std::string&, T) const;                           \
+#define MPSOLID_H5_INSTANTIATE(T)                                                                \
+  template void Group::write<T>(const std::string&, const std::vector<T>&, std::size_t, int)     \
+      const;                                                                                     \
+  template std::vector<T> Group::read<T>(const std::string&, std::size_t, std::size_t) const;    \
+  template std::uint64_t Group::reserve<T>(const std::string&, std::size_t, std::size_t) const;  \
+  template std::optional<std::uint64_t> Group::placed_offset<T>(const std::string&, std::size_t, \
+                                                                std::size_t) const;              \
+  template void Group::set_attribute<T>(const std::string&, T) const;                            \
   template T Group::attribute<T>(const std::string&) const;
 MPSOLID_H5_INSTANTIATE(double)
 MPSOLID_H5_INSTANTIATE(std::int8_t)

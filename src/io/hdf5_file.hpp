@@ -5,6 +5,7 @@
 // failure is an h5::Error naming the object.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -67,6 +68,13 @@ class Group {
   // k * columns * sizeof(T), native numbers as in memory); 0 when empty.
   template <class T>
   std::uint64_t reserve(const std::string& name, std::size_t rows, std::size_t columns = 1) const;
+  // Where a dataset of rows x columns of T stored as reserve() stores it
+  // (contiguous, unfiltered, native numbers, its space allocated) starts in
+  // the file, for rows read in place by other processes; nullopt when it is
+  // stored otherwise or has another shape (0 when empty).
+  template <class T>
+  std::optional<std::uint64_t> placed_offset(const std::string& name, std::size_t rows,
+                                             std::size_t columns = 1) const;
   // Reads a dataset that must be rows x columns of T (1-D when columns == 1).
   template <class T>
   std::vector<T> read(const std::string& name, std::size_t rows, std::size_t columns = 1) const;

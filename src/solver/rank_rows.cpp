@@ -74,12 +74,38 @@ void append_hash(std::uint64_t h, std::vector<double>& out) {
 std::uint64_t read_hash(const std::vector<double>& in, std::size_t at) {
   return (static_cast<std::uint64_t>(in.at(at)) << 32) | static_cast<std::uint64_t>(in.at(at + 1));
 }
+
+// A checkpoint's particle arrays: the members' rows written from the store,
+// or (`restore`) read into it; returns each array's hash terms summed.
+std::vector<std::uint64_t> place_state_arrays(ParticleStore& p, const IdRuns& runs,
+                                              const RowPlacement& placement, PlacedFile& file) {
+  const bool restore = placement.content == RowPlacement::Content::restore;
+  const std::vector<StateArray>& arrays = state_arrays(p.dimension);
+  std::vector<std::uint64_t> hashes;
+  std::vector<double> values(runs.members.size());
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    std::vector<double>& stored = p.*arrays[a].member;
+    if (restore) file.read(placement.offsets.at(a), sizeof(double), runs, values.data());
+    std::uint64_t hash = 0;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const std::size_t i = runs.members[k];
+      if (restore)
+        stored[i] = values[k];
+      else
+        values[k] = stored[i];
+      hash += placed_term(static_cast<std::uint64_t>(p.id[i]), values[k]);
+    }
+    if (!restore) file.write(placement.offsets.at(a), sizeof(double), runs, values.data());
+    hashes.push_back(hash);
+  }
+  return hashes;
+}
 }  // namespace
 
 void append_rank_rows(RankPart& part, const RankGroup& world,
                       const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
                       std::vector<double>& out) {
-  const ParticleStore& p = part.local.particles;
+  ParticleStore& p = part.local.particles;
   const bool frame = placement.content == RowPlacement::Content::frame;
   std::optional<SurfaceMarks> marks;
   if (frame) marks = rank_surface_marks(part, world, surfaces);
@@ -87,7 +113,9 @@ void append_rank_rows(RankPart& part, const RankGroup& world,
   std::vector<std::uint64_t> hashes;
   int error = 0;
   try {
-    PlacedFile file(placement.file);
+    PlacedFile file(placement.file, placement.content == RowPlacement::Content::restore
+                                        ? PlacedFile::Access::read
+                                        : PlacedFile::Access::write);
     if (frame) {
       const std::vector<RowLayout>& fields = frame_row_layout(p.dimension);
       for (std::size_t f = 0; f < fields.size(); ++f)
@@ -97,19 +125,7 @@ void append_rank_rows(RankPart& part, const RankGroup& world,
             },
             frame_rows(fields[f], p, runs.members, *marks));
     } else {
-      const std::vector<StateArray>& arrays = state_arrays(p.dimension);
-      std::vector<double> values(runs.members.size());
-      for (std::size_t a = 0; a < arrays.size(); ++a) {
-        const std::vector<double>& from = p.*arrays[a].member;
-        std::uint64_t hash = 0;
-        for (std::size_t k = 0; k < values.size(); ++k) {
-          const std::size_t i = runs.members[k];
-          values[k] = from[i];
-          hash += placed_term(static_cast<std::uint64_t>(p.id[i]), values[k]);
-        }
-        file.write(placement.offsets.at(a), sizeof(double), runs, values.data());
-        hashes.push_back(hash);
-      }
+      hashes = place_state_arrays(p, runs, placement, file);
     }
     file.close();
   } catch (const PlacedRowsError& e) {
@@ -127,7 +143,8 @@ std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int r
   if (total.array_hashes.empty()) total.array_hashes.assign(count, 0);
   for (std::size_t a = 0; a < count; ++a, at += 2) total.array_hashes.at(a) += read_hash(in, at);
   if (error == 0) return "";
-  return fmt::format("{}: rank {} could not write its particles' rows: {}", placement.file, rank,
+  return fmt::format("{}: rank {} could not {} its particles' rows: {}", placement.file, rank,
+                     placement.content == RowPlacement::Content::restore ? "read" : "write",
                      std::strerror(error));
 }
 

@@ -21,14 +21,15 @@ std::string encode_placement(const RowPlacement& placement);
 RowPlacement decode_placement(const std::string& text);
 
 // Writes the part's owned particles' rows of `placement` (a frame's after
-// the fields round) and appends what rank 0 reads: the system's error
-// number (0: written) and a checkpoint's arrays' hash terms. Every rank must call it (a plane
-// frame's nodes are gathered).
+// the fields round), or reads them from a checkpoint into the part (a
+// restore), and appends what rank 0 reads: the system's error number (0:
+// done) and a checkpoint's arrays' hash terms. Every rank must call it (a
+// plane frame's nodes are gathered).
 void append_rank_rows(RankPart& part, const RankGroup& world,
                       const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
                       std::vector<double>& out);
 // Adds rank `rank`'s report (as append_rank_rows wrote it) to `total`;
-// returns, when it could not write, what failed (the file, the rank, the
+// returns, when it could not write (or read), what failed (the file, the rank, the
 // system's reason), else "". Rank 0 reads every rank's report before it
 // reports a failure, so that no rank waits on it.
 std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int rank,

@@ -98,6 +98,13 @@ void take_slice(RankPart& p, const std::vector<double>& slice) {
   StateSlice::read(p.local, p.layout.owned, slice, at);
 }
 
+// Rank 0's bodies and loads inside this rank's part (the step first).
+void take_items(RankPart& p, const std::vector<double>& items) {
+  p.local.step = static_cast<std::int64_t>(items.at(0));
+  std::size_t at = 1;
+  StateSlice::read_items(p.local, p.layout.owned, items, at);
+}
+
 // Whether a fields round sends the strain and pressure arrays: for rank 0's
 // copy of the particles, when it has one and the round is neither a check's
 // nor a placement's.
@@ -172,13 +179,13 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 4096;
+constexpr std::int64_t kExchangeFlags = 8192;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
          (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
          (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0) +
          (how.estimate ? 256 : 0) + (how.time_step ? 512 : 0) + (how.head ? 1024 : 0) +
-         (how.describe ? 2048 : 0);
+         (how.describe ? 2048 : 0) + (how.send_items ? 4096 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
@@ -187,7 +194,8 @@ Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
   return {(flags & 1) != 0,   (flags & 2) != 0,   (flags & 4) != 0,    (flags & 8) != 0,
           (flags & 16) != 0,  (flags & 32) != 0,  (flags & 64) != 0,   (flags & 128) != 0,
-          (flags & 256) != 0, (flags & 512) != 0, (flags & 1024) != 0, (flags & 2048) != 0};
+          (flags & 256) != 0, (flags & 512) != 0, (flags & 1024) != 0, (flags & 2048) != 0,
+          (flags & 4096) != 0};
 }
 }  // namespace
 
@@ -347,8 +355,12 @@ PlacedRows RankedStepper::place_rows(SolverState& global, const RowPlacement& pl
                                      PhaseTimers&) {
   parts_->placement = placement;
   const bool frame = placement.content == RowPlacement::Content::frame;
-  const RankFields fields =
-      exchange(global, 0, {.send_slices = ranks_behind_, .fields = frame, .write_rows = true});
+  const bool restore = placement.content == RowPlacement::Content::restore;
+  if (restore && holds_particles())
+    throw std::logic_error("RankedStepper: rows to restore beside rank 0's copy");
+  const RankFields fields = exchange(
+      global, 0,
+      {.send_slices = ranks_behind_, .fields = frame, .write_rows = true, .send_items = restore});
   if (frame) fields_ = fields;
   ranks_behind_ = false;
   return placed_;
@@ -368,6 +380,16 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (how.write_rows) {
     std::string text = encode_placement(parts_->placement);
     world.broadcast(text);
+  }
+  if (how.send_items) {
+    for (int r = 0; r < world.size(); ++r) {
+      std::vector<double> items{static_cast<double>(global.step)};
+      StateSlice::append_items(global, d.owned(r), items);
+      if (r == 0)
+        take_items(p, items);
+      else
+        world.send(r, items);
+    }
   }
   if (how.send_slices) {
     if (!holds_particles())
@@ -430,7 +452,12 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
       if (write_failure.empty()) write_failure = failed;
     }
   }
-  if (!write_failure.empty()) throw std::runtime_error(write_failure);
+  if (!write_failure.empty()) {
+    // A checkpoint the ranks cannot read is bad input (cut short, say).
+    if (parts_->placement.content == RowPlacement::Content::restore)
+      throw InputError(write_failure);
+    throw std::runtime_error(write_failure);
+  }
   if (how.head) {
     counts_.bonds = bonds.bonds;
     counts_.bond_hash = bonds.hash;
@@ -508,6 +535,7 @@ int follow_rank_zero(const Communicator& world) {
         world.broadcast(placement);
         parts->placement = decode_placement(placement);
       }
+      if (how.send_items) take_items(parts->part, world.receive(0));
       if (how.send_slices) take_slice(parts->part, world.receive(0));
       const std::vector<double> back = step_and_report(*parts, world, steps_of(command), how);
       if (how.answered()) world.send(0, back);

@@ -48,6 +48,7 @@ struct Exchange {
   bool time_step = false;     // before the steps: rank 0 gives every rank dt
   bool head = false;          // each rank's bodies, loads and bond facts (no whole copy)
   bool describe = false;      // the owner of a particle rank 0 names describes it
+  bool send_items = false;    // before the steps: rank 0's bodies and loads changed (no copy)
   // Whether each rank sends rank 0 a message after the steps.
   bool answered() const { return bring_back || fields || write_rows || report || head || describe; }
 };
@@ -126,7 +127,9 @@ class RankedStepper final : public Stepper {
   void restore_good(SolverState& global) override;
   std::int64_t good_step() const override { return good_step_; }
   // Every rank writes its own particles' rows of `placement` (a frame's
-  // after the fields round at the current positions): no slice moves.
+  // after the fields round at the current positions): no slice moves. A
+  // restore (rank 0 keeping no copy, its bodies, loads and step restored)
+  // sends every rank its bodies and loads, and each reads its own rows.
   bool places_rows() const override { return true; }
   PlacedRows place_rows(SolverState& global, const RowPlacement& placement,
                         PhaseTimers& timers) override;

@@ -148,6 +148,15 @@ SolverState& Simulation::state_to_change() {
   return state_;
 }
 
+PlacedRows Simulation::restore_without_copy(const std::function<void(SolverState&)>& restore_head,
+                                            const RowPlacement& rows) {
+  if (stepper_->holds_particles())
+    throw std::logic_error("restore_without_copy: rank 0 holds a copy of the particles");
+  restore_head(state_);
+  rank_readings_step_ = -1;
+  return stepper_->place_rows(state_, rows, timers_);
+}
+
 Diagnostics Simulation::current_diagnostics() {
   auto t = timers_.time(Phase::diagnostics);
   Diagnostics d = diagnostics_with_strain_energy(state_, stepper_->strain_energy(state_));

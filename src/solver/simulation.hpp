@@ -3,6 +3,7 @@
 // over MPI ranks, src/solver/stepper.hpp) and the phase timers, its case
 // fixed (dt chosen). The run loop with outputs lives in src/app/run.hpp.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -25,7 +26,8 @@ class GasCoupling;
 // Over MPI ranks, whether rank 0 keeps a copy of the particles and bonds:
 // only where it must (`as_needed`: a case with contact, a gas or a pressure
 // load, or compressed frames, whose reads rank 0 does from its copy), or
-// always (`whole`: a resume, which restores the whole checkpoint there).
+// always (`whole`: a resume from a checkpoint whose rows cannot be read in
+// place, which restores the whole checkpoint there).
 enum class RankZeroCopy { as_needed, whole };
 // Whether rank 0 of several keeps the whole copy for `spec` asked `copy`.
 bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy);
@@ -72,6 +74,13 @@ class Simulation {
   // The current state, to change (a restore): over ranks, the next step
   // sends the ranks their slices of it again.
   SolverState& state_to_change();
+  // A restore where rank 0 keeps no copy: `restore_head` overwrites rank
+  // 0's bodies, loads and step (the state it is given holds no particle),
+  // then every rank takes its bodies and loads from it and reads its own
+  // particles' rows of `rows` (a checkpoint's, Content::restore); returns
+  // the arrays' hashes as read.
+  PlacedRows restore_without_copy(const std::function<void(SolverState&)>& restore_head,
+                                  const RowPlacement& rows);
   // The current state with the fields of its positions (strain, pressure),
   // for a frame: after a check over ranks, which leaves them on the ranks,
   // the fields round runs again.

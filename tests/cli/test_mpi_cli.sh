@@ -4,7 +4,7 @@
 #    the serial run's bits: history.csv, every frame, the final checkpoint
 #    (compare_runs.py);
 #  - a checkpoint written at 2 ranks resumes at 1 and at 3 ranks to the
-#    same bits;
+#    same bits, every rank reading its own rows (a damaged row is refused);
 #  - contact (the colliding blocks) at 2 and 3 ranks, and a 2-rank
 #    checkpoint written mid-collision resumed at 1 and 3 ranks, give the
 #    serial bits, and the ranks' estimate of the stable step is the serial
@@ -23,8 +23,8 @@
 #    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
 #    times, and its halo time and bytes, and what rank 0 held: no copy of
-#    the particles for the rod (every rank sets its own part up), a whole
-#    one with contact, compressed frames and a resume;
+#    the particles for the rod (every rank sets its own part up) and its
+#    resume, a whole one with contact and compressed frames;
 #  - the particles stay on their ranks: no slice comes back to rank 0 for a
 #    check, a history row, a frame or a checkpoint (run.json's slice_moves):
 #    each rank writes its own particles' rows of the frames and checkpoints;
@@ -164,14 +164,37 @@ mpi 3 blast_resume resume "$TMP/blast_half" --set time.end=1e-4
 [[ $rc -eq 0 ]] && same "blast wave at 2 ranks, resumed at 3" "$TMP/blast_half" "$TMP/blast_serial" ||
   fail "blast wave resumed at 3 ranks: exit $rc"
 
-# Half the run at 2 ranks, the rest at 1 and at 3.
+# Half the run at 2 ranks, the rest at 1 and at 3 (each rank reading its own
+# rows of the checkpoint, rank 0 holding no copy).
 mpi 2 half run "$CASE" "${SETS[@]}" --set time.end=1e-4 --out "$TMP/half"
 cp -r "$TMP/half" "$TMP/half3"
+cp -r "$TMP/half" "$TMP/damaged"
 "$BIN" resume "$TMP/half" --set time.end=2e-4 --threads 1 >/dev/null 2>"$TMP/resume1.err" </dev/null &&
   same "2 ranks, resumed at 1" "$TMP/half" || fail "resume at 1 rank failed: $(cat "$TMP/resume1.err")"
 mpi 3 resume3 resume "$TMP/half3" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "2 ranks, resumed at 3" "$TMP/half3" || fail "resume at 3 ranks: exit $rc"
-copy_is "a resume at 3 ranks" "$TMP/half3" whole
+copy_is "a resume at 3 ranks" "$TMP/half3" none
+# A changed byte in a particle row only the last rank reads is found by the
+# ranks' hashes: refused with exit 2, the folder as it was.
+/usr/bin/python3 - "$TMP/damaged/checkpoint.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    ds = f["particles/x"]
+    at = ds.id.get_offset() + 8 * (ds.shape[0] - 1) + 3  # the last id's x
+with open(sys.argv[1], "r+b") as f:
+    f.seek(at)
+    b = f.read(1)
+    f.seek(at)
+    f.write(bytes([b[0] ^ 0x10]))
+PY
+before=$(md5sum "$TMP/damaged/"* | md5sum)
+mpi 3 damaged resume "$TMP/damaged" --set time.end=2e-4
+if [[ $rc -eq 2 ]] && grep -q "damaged checkpoint" "$TMP/damaged.err" &&
+  [[ $(md5sum "$TMP/damaged/"* | md5sum) == "$before" ]]; then
+  ok "a damaged particle row: refused at 3 ranks (exit 2), the folder as it was"
+else
+  fail "a damaged particle row at 3 ranks: exit $rc: $(head -c 400 "$TMP/damaged.err")"
+fi
 
 # A batch system's SIGTERM to the launcher (which forwards it to every
 # rank) stops the run with a checkpoint and releases every rank; the run

@@ -323,6 +323,82 @@ TEST(Checkpoint, AFormat3CheckpointResumesToTheSameBits) {
   EXPECT_THROW(read_checkpoint(changed), InputError);
 }
 
+// Read with ParticleRows::placed, a checkpoint (written whole or in place)
+// names where each particle array lies: every row read in place there is
+// the row read whole, and their hashes check the stored content hash (a
+// changed one is refused). A format-3 file cannot be read in place.
+TEST(Checkpoint, ReadInPlaceEveryRowIsWhereItsOffsetSaysAndItsHashChecks) {
+  TempDir dir;
+  Simulation sim(testing::rod_case());
+  sim.advance(7);
+  const Checkpoint whole = full_checkpoint(sim);
+  const std::filesystem::path path = dir.path() / "checkpoint.h5";
+  write_checkpoint(path, whole);
+  const Checkpoint placed = read_checkpoint(path, ParticleRows::placed);
+  ASSERT_EQ(placed.particle_offsets.size(), whole.particle_arrays.size());
+  ASSERT_EQ(placed.particle_arrays.size(), whole.particle_arrays.size());
+  EXPECT_EQ(placed.step, whole.step);
+  EXPECT_EQ(placed.rigid_bodies.size(), whole.rigid_bodies.size());
+  const auto n = static_cast<std::size_t>(placed.particle_count);
+  std::vector<std::int32_t> ids(n);
+  for (std::size_t k = 0; k < n; ++k) ids[k] = static_cast<std::int32_t>(n - 1 - k);
+  std::vector<std::uint64_t> hashes;
+  PlacedFile file(path.string(), PlacedFile::Access::read);
+  for (std::size_t a = 0; a < placed.particle_arrays.size(); ++a) {
+    EXPECT_EQ(placed.particle_arrays[a].first, whole.particle_arrays[a].first);
+    EXPECT_TRUE(placed.particle_arrays[a].second.empty());
+    // Two "ranks", the second holding the first ids, in reverse storage.
+    std::vector<double> rows(n);
+    std::uint64_t hash = 0;
+    for (const Range part : {Range{0, n / 3}, Range{n / 3, n}}) {
+      const IdRuns runs = id_runs(ids, part);
+      std::vector<double> mine(runs.members.size());
+      file.read(placed.particle_offsets[a], sizeof(double), runs, mine.data());
+      for (std::size_t k = 0; k < mine.size(); ++k) {
+        const auto id = static_cast<std::size_t>(ids[runs.members[k]]);
+        rows[id] = mine[k];
+        hash += placed_term(id, mine[k]);
+      }
+    }
+    EXPECT_EQ(0, std::memcmp(rows.data(), whole.particle_arrays[a].second.data(), n * 8))
+        << placed.particle_arrays[a].first;
+    hashes.push_back(hash);
+  }
+  EXPECT_NO_THROW(check_placed_content(placed, hashes, path.string()));
+  hashes.back() += 1;
+  EXPECT_THROW(check_placed_content(placed, hashes, path.string()), InputError);
+
+  const Checkpoint old =
+      read_checkpoint(testing::source_path("tests/regression/data/shock_rod_checkpoint_format3.h5"),
+                      ParticleRows::placed);
+  EXPECT_TRUE(old.particle_offsets.empty());
+  EXPECT_TRUE(old.particle_arrays.empty());
+}
+
+// Without the particles (rank 0 keeping no copy), a restore checks the fit
+// against the run's counts and bond hash, then sets the bodies and step.
+TEST(Checkpoint, ARestoreWithoutParticlesChecksTheRunsCountsAndSetsTheBodies) {
+  Simulation sim(testing::rod_case());
+  sim.advance(9);
+  const Checkpoint c = full_checkpoint(sim);
+  const std::size_t n = sim.particle_count();
+  const std::uint64_t hash = sim.bond_hash();
+  Simulation fresh(testing::rod_case());
+  SolverState head = fresh.state();
+  head.particles = ParticleStore{};
+  head.particles.dimension = 2;
+  Checkpoint placed = c;
+  placed.particle_offsets.assign(placed.particle_arrays.size(), 0);
+  for (auto& [name, values] : placed.particle_arrays) values.clear();
+  EXPECT_THROW(restore_state_without_particles(head, n + 1, hash, placed, "test"), InputError);
+  EXPECT_THROW(restore_state_without_particles(head, n, hash ^ 1, placed, "test"), InputError);
+  restore_state_without_particles(head, n, hash, placed, "test");
+  EXPECT_EQ(head.step, 9);
+  ASSERT_EQ(head.rigid_bodies.size(), sim.state().rigid_bodies.size());
+  for (std::size_t b = 0; b < head.rigid_bodies.size(); ++b)
+    EXPECT_EQ(pose_values(head.rigid_bodies[b]), pose_values(sim.state().rigid_bodies[b]));
+}
+
 TEST(Checkpoint, RefusesOtherStateArraysOrParticleCount) {
   Simulation sim(testing::rod_case());
   Checkpoint c = full_checkpoint(sim);

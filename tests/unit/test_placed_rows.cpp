@@ -1,7 +1,8 @@
 // Rows written in place (src/distributed/placed_rows.hpp) into datasets an
 // HDF5 file reserved for them (h5::Group::reserve): ranks writing their
 // own rows of scattered ids give the file the HDF5 library reads back
-// exactly; the arrays' hash adds over any split; a placement travels as
+// exactly, and read their own rows of datasets the library wrote
+// (h5::Group::placed_offset); the arrays' hash adds over any split; a placement travels as
 // text; failures name the file.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -105,6 +107,62 @@ TEST(PlacedRows, RanksWritingTheirOwnRowsGiveTheFileTheLibraryReadsBack) {
   }
   EXPECT_EQ(group.read<double>("before", 3), (std::vector<double>{1.0, 2.0, 3.0}));
   EXPECT_EQ(group.read<double>("after", 2), (std::vector<double>{4.0, 5.0}));
+  std::filesystem::remove(path);
+}
+
+// The other way: the library writes whole datasets, and ranks cut anywhere
+// read their own rows of scattered ids in place, each where the library
+// says the dataset lies; datasets stored otherwise are not offered.
+TEST(PlacedRows, RanksReadTheirOwnRowsOfWhatTheLibraryWrote) {
+  const std::size_t n = 10'007;
+  const std::vector<std::int32_t> ids = shuffled_ids(n, 9);
+  std::vector<double> by_id(n);
+  for (std::size_t k = 0; k < n; ++k) by_id[k] = std::sqrt(2.0 + static_cast<double>(k));
+  const std::filesystem::path path = temp_file("restore.h5");
+  {
+    h5::File file = h5::File::create(path);
+    file.write<double>("x", by_id);
+    file.write<double>("packed", by_id, 1, 4);
+    file.write<std::int64_t>("integers", std::vector<std::int64_t>(n, 1));
+    file.close();
+  }
+  std::uint64_t at = 0;
+  {
+    const h5::File file = h5::File::open(path, false);
+    const std::optional<std::uint64_t> x = file.placed_offset<double>("x", n);
+    ASSERT_TRUE(x.has_value());
+    at = *x;
+    EXPECT_FALSE(file.placed_offset<double>("x", n + 1).has_value());  // another shape
+    EXPECT_FALSE(file.placed_offset<double>("x", n / 7, 7).has_value());
+    EXPECT_FALSE(file.placed_offset<double>("packed", n).has_value());    // compressed
+    EXPECT_FALSE(file.placed_offset<double>("integers", n).has_value());  // another type
+  }
+  const std::vector<std::size_t> cuts = {0, 2500, 2501, 9000, n};
+  std::vector<double> read(n, -1.0);  // by storage index
+  double bytes = 0;
+  for (std::size_t r = 0; r + 1 < cuts.size(); ++r) {
+    const IdRuns runs = id_runs(ids, {cuts[r], cuts[r + 1]});
+    std::vector<double> rows(runs.members.size());
+    PlacedFile file(path.string(), PlacedFile::Access::read);
+    file.read(at, sizeof(double), runs, rows.data());
+    file.close();
+    bytes += file.bytes();
+    for (std::size_t k = 0; k < rows.size(); ++k) read[runs.members[k]] = rows[k];
+  }
+  EXPECT_EQ(bytes, 8.0 * static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    ASSERT_EQ(read[i], by_id[static_cast<std::size_t>(ids[i])]) << i;
+  // A file cut short inside the rows: the read fails, naming the file.
+  std::filesystem::resize_file(path, at + 8 * (n / 2));
+  PlacedFile file(path.string(), PlacedFile::Access::read);
+  std::vector<double> rows(n);
+  try {
+    file.read(at, sizeof(double), id_runs(ids, {0, n}), rows.data());
+    FAIL() << "read past the end of the file";
+  } catch (const PlacedRowsError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("read"), std::string::npos) << e.what();
+  }
   std::filesystem::remove(path);
 }
 
