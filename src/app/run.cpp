@@ -164,11 +164,11 @@ void step_to_end(Simulation& sim, RunFolder& outputs, RunFacts& facts, const Run
                  bool fresh) {
   const Cadences every(sim.spec(), sim.particle_count());
   // The current state as a frame (its fields must be fresh); over MPI ranks
-  // each rank writes its own particles' rows (compressed frames excepted:
-  // rank 0 compresses them).
+  // each rank writes its own particles' rows (compressed: sends them to rank
+  // 0 chunk by chunk).
   auto write_frame = [&](const Diagnostics& d) {
     auto t = sim.timers().time(Phase::output);
-    if (const RowPlacer placer = sim.row_placer(); placer && sim.spec().compression == 0) {
+    if (const RowPlacer placer = sim.row_placer()) {
       const Simulation::HistorySource h = sim.history_source();
       outputs.write_placed_frame(h.state, sim.spec(), d, h.readings, sim.gas_frame(), placer);
     } else {
@@ -448,17 +448,19 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   if (!by_rows) checkpoint = read_checkpoint(path);  // restored whole on rank 0
   Simulation sim(spec, options.followers, by_rows ? RankZeroCopy::as_needed : RankZeroCopy::whole);
   if (by_rows)
-    check_placed_content(
-        checkpoint,
-        sim.restore_without_copy(
-               [&](SolverState& head) {
-                 restore_state_without_particles(head, sim.particle_count(), sim.bond_hash(),
-                                                 checkpoint, path.string());
-               },
-               {RowPlacement::Content::restore, std::filesystem::absolute(path).string(),
-                checkpoint.particle_offsets})
-            .array_hashes,
-        path.string());
+    check_placed_content(checkpoint,
+                         sim.restore_without_copy(
+                                [&](SolverState& head) {
+                                  restore_state_without_particles(head, sim.particle_count(),
+                                                                  sim.bond_hash(), checkpoint,
+                                                                  path.string());
+                                },
+                                {RowPlacement::Content::restore,
+                                 std::filesystem::absolute(path).string(),
+                                 checkpoint.particle_offsets,
+                                 {}})
+                             .array_hashes,
+                         path.string());
   else
     restore_state(sim.state_to_change(), checkpoint, path.string());
   try {

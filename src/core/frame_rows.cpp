@@ -202,4 +202,16 @@ RowValues frame_rows(const RowLayout& field, const ParticleStore& p,
   throw std::logic_error("frame_rows: no field " + std::string(name));
 }
 
+SurfaceMarks whole_surface_marks(const SolverState& state,
+                                 const std::vector<FrameSurface>& surfaces) {
+  const ParticleStore& p = state.particles;
+  const std::size_t n = p.size();
+  if (p.dimension == 3) return space_surface_marks(state, {0, n});
+  const auto same = [](std::size_t g) { return static_cast<std::int64_t>(g); };
+  return plane_surface_marks(
+      surfaces,
+      surface_nodes(surfaces, p.x.data(), p.y.data(), same, [](std::size_t) { return true; }), n,
+      same);
+}
+
 }  // namespace mpsolid

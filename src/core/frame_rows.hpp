@@ -78,6 +78,11 @@ SurfaceMarks plane_surface_marks(const std::vector<FrameSurface>& surfaces,
 // (their rows whole, their partners' positions current).
 SurfaceMarks space_surface_marks(const SolverState& state, Range marked);
 
+// The marks of a whole state (its particles all held, in global order):
+// in space from the bonds, in the plane from `surfaces`' nodes.
+SurfaceMarks whole_surface_marks(const SolverState& state,
+                                 const std::vector<FrameSurface>& surfaces);
+
 // The rows of `field` for `members` (storage indices of `p`, in id order).
 RowValues frame_rows(const RowLayout& field, const ParticleStore& p,
                      const std::vector<std::size_t>& members, const SurfaceMarks& marks);
@@ -86,12 +91,21 @@ RowValues frame_rows(const RowLayout& field, const ParticleStore& p,
 // datasets (frame_row_layout) or a checkpoint's particle arrays
 // (state_arrays), each a contiguous dataset of native numbers whose row for
 // id k lies at offset + k * row_bytes; or, to restore a checkpoint, reads
-// from its particle arrays.
+// from its particle arrays. A compressed frame's rows (HDF5 compresses
+// whole chunks) go to rank 0 instead, chunk by chunk of ids: every rank
+// sends its rows of a chunk, and rank 0's `chunk_sink` writes the chunk.
 struct RowPlacement {
-  enum class Content : std::int8_t { frame, checkpoint, restore };
+  enum class Content : std::int8_t { frame, checkpoint, restore, compressed_frame };
   Content content = Content::frame;
   std::string file;
-  std::vector<std::uint64_t> offsets;  // one per dataset, in their order
+  // One per dataset, in their order; a compressed frame's: the particles,
+  // then the ids per chunk.
+  std::vector<std::uint64_t> offsets;
+  // Rank 0's, for a compressed frame (not sent): the rows of ids first,
+  // first + 1, ... of each dataset (frame_row_layout's order).
+  std::function<void(std::uint64_t first, const std::vector<RowValues>& rows)> chunk_sink;
+  // A frame's rows (compressed or not), at the current positions.
+  bool frame() const { return content == Content::frame || content == Content::compressed_frame; }
 };
 // What the ranks report of a placement: a checkpoint's particle arrays'
 // hashes (placed_array_hash: each array's terms summed over the ranks), as

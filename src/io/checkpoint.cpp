@@ -238,7 +238,7 @@ std::uintmax_t write_checkpoint(const std::filesystem::path& path, const Checkpo
     const h5::Group particles = file.create_group("particles");
     std::vector<std::string> order;
     RowPlacement placement{
-        RowPlacement::Content::checkpoint, std::filesystem::absolute(staged).string(), {}};
+        RowPlacement::Content::checkpoint, std::filesystem::absolute(staged).string(), {}, {}};
     const auto count = static_cast<std::size_t>(c.particle_count);
     for (const auto& [name, values] : c.particle_arrays) {
       if (placer)

@@ -65,6 +65,18 @@ std::uint64_t reserve_rows(const h5::Group& group, const RowLayout& field, std::
   return 0;
 }
 
+// A compressed dataset of a field, its rows written chunk by chunk.
+void create_rows(const h5::Group& group, const RowLayout& field, std::size_t rows, int deflate) {
+  switch (field.type) {
+    case RowType::f64:
+      return group.create<double>(field.name, rows, field.columns, deflate);
+    case RowType::i32:
+      return group.create<std::int32_t>(field.name, rows, field.columns, deflate);
+    case RowType::i8:
+      return group.create<std::int8_t>(field.name, rows, field.columns, deflate);
+  }
+}
+
 std::filesystem::path sidecar_path(const std::filesystem::path& path) {
   return path.parent_path() / (path.stem().string() + ".xdmf");
 }
@@ -184,21 +196,14 @@ void FrameWriter::end_frame(const h5::Group& group, std::int64_t step, const Cas
 
 void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas) {
   const ParticleStore& p = state.particles;
-  const std::size_t n = p.size();
   const h5::Group group = begin_frame(state.step, spec);
-  const auto same = [](std::size_t g) { return static_cast<std::int64_t>(g); };
   if (p.dimension != 3 && !surfaces_built_) {
     std::vector<std::pair<Kind, const Shape*>> bodies;
     for (const BodySpec& b : spec.bodies) bodies.emplace_back(b.kind, &b.shape);
     surfaces_ = frame_surfaces(bodies, state.body_ranges, spec.l0);
     surfaces_built_ = true;
   }
-  const SurfaceMarks marks =
-      p.dimension == 3 ? space_surface_marks(state, {0, n})
-                       : plane_surface_marks(surfaces_,
-                                             surface_nodes(surfaces_, p.x.data(), p.y.data(), same,
-                                                           [](std::size_t) { return true; }),
-                                             n, same);
+  const SurfaceMarks marks = whole_surface_marks(state, surfaces_);
   for (const RowLayout& field : frame_row_layout(p.dimension))
     std::visit(
         [&](const auto& values) { group.write(field.name, values, field.columns, compression_); },
@@ -208,12 +213,29 @@ void FrameWriter::write(const SolverState& state, const CaseSpec& spec, const Ga
 
 void FrameWriter::write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
                                const RowPlacer& placer) {
-  if (compression_ > 0) throw std::logic_error("write_placed: compressed frames are not placed");
   const h5::Group group = begin_frame(step, spec);
-  RowPlacement placement{
-      RowPlacement::Content::frame, std::filesystem::absolute(staging_path(path_)).string(), {}};
-  for (const RowLayout& field : frame_row_layout(dimension_))
-    placement.offsets.push_back(reserve_rows(group, field, particles_));
+  RowPlacement placement{RowPlacement::Content::frame,
+                         std::filesystem::absolute(staging_path(path_)).string(),
+                         {},
+                         {}};
+  const std::vector<RowLayout>& fields = frame_row_layout(dimension_);
+  if (compression_ > 0) {
+    // HDF5 compresses whole chunks: the ranks' rows come here chunk by chunk.
+    placement.content = RowPlacement::Content::compressed_frame;
+    placement.offsets = {particles_, h5::kChunkRows};
+    for (const RowLayout& field : fields) create_rows(group, field, particles_, compression_);
+    placement.chunk_sink = [&](std::uint64_t first, const std::vector<RowValues>& rows) {
+      for (std::size_t f = 0; f < fields.size(); ++f)
+        std::visit(
+            [&](const auto& values) {
+              group.write_rows(fields[f].name, first, values, fields[f].columns);
+            },
+            rows[f]);
+    };
+  } else {
+    for (const RowLayout& field : fields)
+      placement.offsets.push_back(reserve_rows(group, field, particles_));
+  }
   placer(placement);
   end_frame(group, step, spec, gas);
 }

@@ -39,7 +39,8 @@ class FrameWriter {
   // the gas's fields (none when `gas` is empty).
   void write(const SolverState& state, const CaseSpec& spec, const GasFrame& gas = {});
   // The next frame at `step` with its particles' rows written in place by
-  // `placer` (over MPI ranks, every rank its own; uncompressed files only).
+  // `placer` (over MPI ranks, every rank its own), or, compressed, given by
+  // it chunk by chunk (RowPlacement::chunk_sink).
   void write_placed(std::int64_t step, const CaseSpec& spec, const GasFrame& gas,
                     const RowPlacer& placer);
   // Publishes a copy of the file as it is now (and the sidecar); writing goes on.

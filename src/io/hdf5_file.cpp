@@ -135,32 +135,68 @@ std::vector<std::string> Group::children() const {
   return names;
 }
 
+namespace {
+// A dataset of rows x columns of T, deflate-compressed (level > 0, with byte
+// shuffling) in chunks of up to kChunkRows rows.
 template <class T>
-void Group::write(const std::string& name, const std::vector<T>& data, std::size_t columns,
-                  int deflate) const {
-  static_assert(kSupported<T>);
-  const hsize_t dims[2] = {data.size() / columns, columns};
+Handle create_dataset(hid_t where_id, const std::string& name, const std::string& where_text,
+                      std::size_t rows, std::size_t columns, int deflate) {
+  const hsize_t dims[2] = {rows, columns};
   const int rank = columns == 1 ? 1 : 2;
-  Handle space(checked(H5Screate_simple(rank, dims, nullptr), "dataspace for " + where(name)),
+  Handle space(checked(H5Screate_simple(rank, dims, nullptr), "dataspace for " + where_text),
                H5Sclose);
   Handle props(checked(H5Pcreate(H5P_DATASET_CREATE), "properties"), H5Pclose);
   if (deflate > 0 && dims[0] > 0) {
     if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
       throw Error("this HDF5 library has no deflate filter (output.compression must be 0)");
     // Chunks of up to 64 Ki rows: whole datasets for ordinary cases.
-    const hsize_t chunk[2] = {std::min<hsize_t>(dims[0], 65536), columns};
-    checked_status(H5Pset_chunk(props, rank, chunk), "chunking " + where(name));
-    checked_status(H5Pset_shuffle(props), "shuffle filter for " + where(name));
+    const hsize_t chunk[2] = {std::min<hsize_t>(dims[0], kChunkRows), columns};
+    checked_status(H5Pset_chunk(props, rank, chunk), "chunking " + where_text);
+    checked_status(H5Pset_shuffle(props), "shuffle filter for " + where_text);
     checked_status(H5Pset_deflate(props, static_cast<unsigned>(deflate)),
-                   "deflate filter for " + where(name));
+                   "deflate filter for " + where_text);
   }
-  Handle set(checked(H5Dcreate2(id_, name.c_str(), memory_type<T>(), space, H5P_DEFAULT, props,
-                                H5P_DEFAULT),
-                     "cannot create " + where(name)),
-             H5Dclose);
+  return Handle(checked(H5Dcreate2(where_id, name.c_str(), memory_type<T>(), space, H5P_DEFAULT,
+                                   props, H5P_DEFAULT),
+                        "cannot create " + where_text),
+                H5Dclose);
+}
+}  // namespace
+
+template <class T>
+void Group::write(const std::string& name, const std::vector<T>& data, std::size_t columns,
+                  int deflate) const {
+  static_assert(kSupported<T>);
+  Handle set = create_dataset<T>(id_, name, where(name), data.size() / columns, columns, deflate);
   if (!data.empty())
     checked_status(H5Dwrite(set, memory_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
                    "cannot write " + where(name));
+}
+
+template <class T>
+void Group::create(const std::string& name, std::size_t rows, std::size_t columns,
+                   int deflate) const {
+  static_assert(kSupported<T>);
+  create_dataset<T>(id_, name, where(name), rows, columns, deflate);
+}
+
+template <class T>
+void Group::write_rows(const std::string& name, std::size_t first, const std::vector<T>& data,
+                       std::size_t columns) const {
+  static_assert(kSupported<T>);
+  if (data.empty()) return;
+  Handle set(checked(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), "cannot open " + where(name)),
+             H5Dclose);
+  Handle file_space(checked(H5Dget_space(set), "dataspace of " + where(name)), H5Sclose);
+  const int rank = columns == 1 ? 1 : 2;
+  const hsize_t start[2] = {first, 0};
+  const hsize_t count[2] = {data.size() / columns, columns};
+  checked_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr),
+                 "rows of " + where(name));
+  Handle memory_space(checked(H5Screate_simple(rank, count, nullptr), "rows' dataspace"), H5Sclose);
+  checked_status(
+      H5Dwrite(set, memory_type<T>(), memory_space, file_space, H5P_DEFAULT, data.data()),
+      "cannot write rows of " + where(name));
 }
 
 template <class T>
@@ -358,6 +394,9 @@ bool Group::has_attribute(const std::string& name) const {
       const;                                                                                     \
   template std::vector<T> Group::read<T>(const std::string&, std::size_t, std::size_t) const;    \
   template std::uint64_t Group::reserve<T>(const std::string&, std::size_t, std::size_t) const;  \
+  template void Group::create<T>(const std::string&, std::size_t, std::size_t, int) const;       \
+  template void Group::write_rows<T>(const std::string&, std::size_t, const std::vector<T>&,     \
+                                     std::size_t) const;                                         \
   template std::optional<std::uint64_t> Group::placed_offset<T>(const std::string&, std::size_t, \
                                                                 std::size_t) const;              \
   template void Group::set_attribute<T>(const std::string&, T) const;                            \

@@ -39,6 +39,9 @@ struct DatasetInfo {
   std::string filter;  // "deflate" when compressed, else ""
 };
 
+// The rows of a compressed dataset's chunks (the last one may be shorter).
+constexpr std::size_t kChunkRows = 65536;
+
 // An open group (or, as File, the root group of an open file).
 class Group {
  public:
@@ -62,6 +65,17 @@ class Group {
   template <class T>
   void write(const std::string& name, const std::vector<T>& data, std::size_t columns = 1,
              int deflate = 0) const;
+  // A dataset of rows x columns stored as write() stores it (deflate level
+  // `deflate`, chunks of kChunkRows rows), its rows written later
+  // (write_rows), chunk by chunk where compressed.
+  template <class T>
+  void create(const std::string& name, std::size_t rows, std::size_t columns = 1,
+              int deflate = 0) const;
+  // Rows first, first + 1, ... of a dataset of `columns` columns: data.size()
+  // / columns of them.
+  template <class T>
+  void write_rows(const std::string& name, std::size_t first, const std::vector<T>& data,
+                  std::size_t columns = 1) const;
   // A contiguous dataset of rows x columns (1-D when columns == 1), its
   // space allocated now and never filled, for rows written in place by other
   // processes: returns the file offset of its first byte (row k at offset +

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "src/core/hash.hpp"
 #include "src/distributed/placed_rows.hpp"
@@ -133,6 +134,74 @@ void append_rank_rows(RankPart& part, const RankGroup& world,
   }
   out.insert(out.end(), {static_cast<double>(error), static_cast<double>(hashes.size())});
   for (const std::uint64_t h : hashes) append_hash(h, out);
+}
+
+FrameChunks::FrameChunks(const RankPart& part, const RankGroup& world,
+                         const std::vector<FrameSurface>& surfaces, const RowPlacement& placement)
+    : particles_(part.local.particles),
+      marks_(rank_surface_marks(part, world, surfaces)),
+      members_(id_runs(part.local.particles.id, part.layout.owned).members),
+      total_(placement.offsets.at(0)),
+      per_chunk_(placement.offsets.at(1)),
+      chunks_(static_cast<std::size_t>((total_ + per_chunk_ - 1) / per_chunk_)) {}
+
+std::vector<double> FrameChunks::rows(std::size_t c) const {
+  // The members whose ids fall in the chunk: a run of members_ (by id).
+  const auto id_of = [&](std::size_t i) { return static_cast<std::uint64_t>(particles_.id[i]); };
+  const std::uint64_t first = c * per_chunk_, end = std::min(total_, first + per_chunk_);
+  const auto from = std::partition_point(members_.begin(), members_.end(),
+                                         [&](std::size_t i) { return id_of(i) < first; });
+  const auto to =
+      std::partition_point(from, members_.end(), [&](std::size_t i) { return id_of(i) < end; });
+  const std::vector<std::size_t> chunk(from, to);
+  std::vector<double> out;
+  for (const RowLayout& field : frame_row_layout(particles_.dimension))
+    std::visit([&](const auto& values) { out.insert(out.end(), values.begin(), values.end()); },
+               frame_rows(field, particles_, chunk, marks_));
+  return out;
+}
+
+ChunkRows::ChunkRows(int dimension, std::uint64_t first, std::size_t count)
+    : layout_(frame_row_layout(dimension)), first_(first) {
+  for (const RowLayout& field : layout_) {
+    const std::size_t n = count * field.columns;
+    switch (field.type) {
+      case RowType::f64:
+        values_.emplace_back(std::vector<double>(n));
+        break;
+      case RowType::i32:
+        values_.emplace_back(std::vector<std::int32_t>(n));
+        break;
+      case RowType::i8:
+        values_.emplace_back(std::vector<std::int8_t>(n));
+        break;
+    }
+  }
+}
+
+void ChunkRows::add(const std::vector<double>& rows) {
+  std::size_t columns = 0;
+  for (const RowLayout& field : layout_) columns += field.columns;
+  const std::size_t count = rows.size() / columns;
+  if (count * columns != rows.size() || layout_.front().columns != 1)
+    throw std::runtime_error("a rank's rows of a frame chunk cut short");
+  // The first dataset is the id: where each row goes.
+  std::vector<std::size_t> at(count);
+  for (std::size_t k = 0; k < count; ++k)
+    at[k] = static_cast<std::size_t>(static_cast<std::uint64_t>(rows[k]) - first_);
+  std::size_t read = 0;
+  for (std::size_t f = 0; f < layout_.size(); ++f) {
+    const std::size_t width = layout_[f].columns;
+    std::visit(
+        [&](auto& values) {
+          using T = typename std::decay_t<decltype(values)>::value_type;
+          for (std::size_t k = 0; k < count; ++k)
+            for (std::size_t j = 0; j < width; ++j)
+              values.at(at[k] * width + j) = static_cast<T>(rows[read + k * width + j]);
+        },
+        values_[f]);
+    read += count * width;
+  }
 }
 
 std::string read_rank_rows(const std::vector<double>& in, std::size_t& at, int rank,

@@ -28,6 +28,41 @@ RowPlacement decode_placement(const std::string& text);
 void append_rank_rows(RankPart& part, const RankGroup& world,
                       const std::vector<FrameSurface>& surfaces, const RowPlacement& placement,
                       std::vector<double>& out);
+// A compressed frame's rows of a rank's owned particles, chunk by chunk of
+// ids (RowPlacement::Content::compressed_frame: offsets hold the particles
+// and the ids per chunk), every dataset's rows of a chunk's ids in one
+// message of doubles (every element type fits one exactly). Rank 0 holds
+// one chunk at a time, never the ranks' whole rows.
+class FrameChunks {
+ public:
+  // Every rank must make it at once (a plane frame's nodes are gathered).
+  FrameChunks(const RankPart& part, const RankGroup& world,
+              const std::vector<FrameSurface>& surfaces, const RowPlacement& placement);
+  std::size_t chunks() const { return chunks_; }
+  // This rank's rows of chunk c (perhaps none), dataset after dataset.
+  std::vector<double> rows(std::size_t c) const;
+
+ private:
+  const ParticleStore& particles_;
+  SurfaceMarks marks_;
+  std::vector<std::size_t> members_;  // owned storage indices by ascending id
+  std::uint64_t total_ = 0, per_chunk_ = 0;
+  std::size_t chunks_ = 0;
+};
+// Rank 0's chunk of a compressed frame, assembled from every rank's rows.
+class ChunkRows {
+ public:
+  ChunkRows(int dimension, std::uint64_t first, std::size_t count);
+  // A rank's rows of the chunk (FrameChunks::rows).
+  void add(const std::vector<double>& rows);
+  const std::vector<RowValues>& values() const { return values_; }
+
+ private:
+  const std::vector<RowLayout>& layout_;
+  std::uint64_t first_;
+  std::vector<RowValues> values_;
+};
+
 // Adds rank `rank`'s report (as append_rank_rows wrote it) to `total`;
 // returns, when it could not write (or read), what failed (the file, the rank, the
 // system's reason), else "". Rank 0 reads every rank's report before it

@@ -28,12 +28,13 @@ struct RankStepping {
   // first frame this rank writes.
   std::vector<FrameSurface> surfaces;
   bool surfaces_made = false;
-  RowPlacement placement;              // of the batch that writes rows
-  bool whole_on_rank_zero = true;      // false: rank 0 keeps no particle (told by a head round)
-  std::size_t describe = 0;            // the particle a describe round names
-  Decomposition decomposition;         // rank 0: who owns what
-  std::int64_t rebuilds_reported = 0;  // this rank's contact list rebuilds
-  std::vector<double> good;            // the last good slice (step first), as sent
+  RowPlacement placement;               // of the batch that writes rows
+  std::unique_ptr<FrameChunks> chunks;  // rank 0's rows of a compressed frame, until written
+  bool whole_on_rank_zero = true;       // false: rank 0 keeps no particle (told by a head round)
+  std::size_t describe = 0;             // the particle a describe round names
+  Decomposition decomposition;          // rank 0: who owns what
+  std::int64_t rebuilds_reported = 0;   // this rank's contact list rebuilds
+  std::vector<double> good;             // the last good slice (step first), as sent
 };
 
 namespace {
@@ -165,14 +166,26 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
   if (how.fields) append_rank_fields(p, world, parts.limits, back, field_arrays(parts, how));
   if (how.check) append_rank_check(p, back);
   if (how.write_rows) {
-    const bool frame = parts.placement.content == RowPlacement::Content::frame;
+    const bool frame = parts.placement.frame();
     if (frame && p.local.particles.dimension != 3 && !parts.surfaces_made) {
       std::vector<std::pair<Kind, const Shape*>> bodies;
       for (const BodySpec& b : parts.spec.bodies) bodies.emplace_back(b.kind, &b.shape);
       parts.surfaces = frame_surfaces(bodies, p.body_ranges, parts.spec.l0);
       parts.surfaces_made = true;
     }
-    append_rank_rows(p, world, parts.surfaces, parts.placement, back);
+    if (parts.placement.content == RowPlacement::Content::compressed_frame) {
+      // Rank 0 writes the chunks (RankedStepper::exchange): a follower sends
+      // its rows of each, rank 0 keeps its own to read chunk by chunk.
+      parts.chunks = std::make_unique<FrameChunks>(p, world, parts.surfaces, parts.placement);
+      if (world.rank() != 0) {
+        for (std::size_t c = 0; c < parts.chunks->chunks(); ++c)
+          world.send(0, parts.chunks->rows(c));
+        parts.chunks.reset();
+      }
+      back.insert(back.end(), {0.0, 0.0});  // as append_rank_rows: no error, no hashes
+    } else {
+      append_rank_rows(p, world, parts.surfaces, parts.placement, back);
+    }
   }
   return back;
 }
@@ -354,7 +367,7 @@ void RankedStepper::restore_good(SolverState& global) {
 PlacedRows RankedStepper::place_rows(SolverState& global, const RowPlacement& placement,
                                      PhaseTimers&) {
   parts_->placement = placement;
-  const bool frame = placement.content == RowPlacement::Content::frame;
+  const bool frame = placement.frame();
   const bool restore = placement.content == RowPlacement::Content::restore;
   if (restore && holds_particles())
     throw std::logic_error("RankedStepper: rows to restore beside rank 0's copy");
@@ -406,13 +419,14 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   }
   std::vector<double> mine = step_and_report(*parts_, world, steps, how);
   global.step = p.local.step;
+  std::string write_failure;  // the first rank's that could not write its rows
+  if (parts_->chunks) write_failure = write_chunks(global);
   RankFields out;
   if (!how.answered()) return out;
   if (how.bring_back || how.report) rank_times_.clear();
   if (how.write_rows) placed_ = {};
   std::vector<OrderedSumPart<1>> energy_parts;
   RankChecks checks(p.extent_ranges.size());
-  std::string write_failure;  // the first rank's that could not write its rows
   BondTableFacts bonds;
   for (int r = 0; r < world.size(); ++r) {
     const std::vector<double> back = r == 0 ? std::move(mine) : world.receive(r);
@@ -465,6 +479,29 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);
   return out;
+}
+
+std::string RankedStepper::write_chunks(const SolverState& global) {
+  const Communicator& world = followers_.world();
+  const std::unique_ptr<FrameChunks> chunks = std::move(parts_->chunks);
+  const RowPlacement& placement = parts_->placement;
+  const std::uint64_t total = placement.offsets.at(0), per_chunk = placement.offsets.at(1);
+  // After a failed write every rank's rows are still received, so none waits.
+  std::string failure;
+  for (std::size_t c = 0; c < chunks->chunks(); ++c) {
+    const std::uint64_t first = c * per_chunk;
+    ChunkRows rows(global.particles.dimension, first,
+                   static_cast<std::size_t>(std::min(per_chunk, total - first)));
+    rows.add(chunks->rows(c));
+    for (int r = 1; r < world.size(); ++r) rows.add(world.receive(r));
+    if (!failure.empty()) continue;
+    try {
+      placement.chunk_sink(first, rows.values());
+    } catch (const std::exception& e) {
+      failure = fmt::format("{}: {}", placement.file, e.what());
+    }
+  }
+  return failure;
 }
 
 void RankedStepper::count_slice_move(int r, std::size_t doubles) {

@@ -148,6 +148,9 @@ class RankedStepper final : public Stepper {
   // rank's report come back into `global`; with `fields`, the fields round
   // (with `check`, a check's figures into check_).
   RankFields exchange(SolverState& global, std::int64_t steps, Exchange how);
+  // A compressed frame: every rank's rows chunk by chunk, each chunk written
+  // by the placement's sink; what failed, or "".
+  std::string write_chunks(const SolverState& global);
   // Counts a move of rank r's slice of `doubles` values.
   void count_slice_move(int r, std::size_t doubles);
 

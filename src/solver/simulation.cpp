@@ -40,7 +40,7 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
 }  // namespace
 
 bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy) {
-  return copy == RankZeroCopy::whole || !part_set_up_covers(spec) || spec.compression != 0;
+  return copy == RankZeroCopy::whole || !part_set_up_covers(spec);
 }
 
 Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)
@@ -128,7 +128,7 @@ RowPlacer Simulation::row_placer() {
   if (!stepper_->places_rows()) return {};
   return [this](const RowPlacement& placement) {
     PlacedRows placed = stepper_->place_rows(state_, placement, timers_);
-    if (placement.content == RowPlacement::Content::frame) fields_on_ranks_ = true;
+    if (placement.frame()) fields_on_ranks_ = true;
     return placed;
   };
 }

@@ -23,12 +23,13 @@
 #    bad input only a follower's part shows ends the job the same way;
 #  - run.json records the ranks and, per rank, its particles, its passes'
 #    times, and its halo time and bytes, and what rank 0 held: no copy of
-#    the particles for the rod (every rank sets its own part up) and its
-#    resume, a whole one with contact and compressed frames;
+#    the particles for the rod (every rank sets its own part up), its
+#    resume and its compressed frames, a whole one with contact;
 #  - the particles stay on their ranks: no slice comes back to rank 0 for a
 #    check, a history row, a frame or a checkpoint (run.json's slice_moves):
-#    each rank writes its own particles' rows of the frames and checkpoints;
-#    compressed frames still bring them to rank 0.
+#    each rank writes its own particles' rows of the frames and checkpoints,
+#    and sends a compressed frame's to rank 0 chunk by chunk of ids (a
+#    frame of 200,338 particles in 4 chunks at 3 ranks: the serial bits).
 #
 #   bash tests/cli/test_mpi_cli.sh PATH_TO_MPSOLID MPIEXEC    (from the repository root)
 set -u
@@ -139,12 +140,20 @@ slices_move_at_the_reads sparse "sparse checks" 0 "${SPARSE[@]}" \
 # checks), still no move, and the serial outputs.
 slices_move_at_the_reads frequent "a check every 100 steps" 0 "${SPARSE[@]}" \
   --set stability.check_interval=100
-# Compressed frames are written by rank 0: the slices come back for each
-# of the 2 frames (the checkpoints stay on the ranks), and the frames hold
-# the same numbers.
-slices_move_at_the_reads compressed "compressed frames" 2 "${SPARSE[@]}" \
+# Compressed frames are written by rank 0 from the ranks' rows sent chunk
+# by chunk of ids: no slice moves, rank 0 holds no copy, and the frames
+# hold the same numbers.
+slices_move_at_the_reads compressed "compressed frames" 0 "${SPARSE[@]}" \
   --set output.compression=4
-copy_is "compressed frames" "$TMP/compressed" whole
+copy_is "compressed frames" "$TMP/compressed" none
+# 200,338 particles: 4 chunks of 65,536 ids, the ranks' ranges across them.
+BIG=(--set l0=1.5e-4 --set time.end=2e-8 --set time.dt=1e-8 --set output.frame_interval=1e-8
+  --set output.compression=1)
+"$BIN" run "$CASE" "${BIG[@]}" --out "$TMP/chunks_serial" --threads 1 >/dev/null 2>&1 </dev/null ||
+  fail "the serial run of 200,338 particles failed"
+mpi 3 chunks run "$CASE" "${BIG[@]}" --out "$TMP/chunks"
+[[ $rc -eq 0 ]] && same "compressed frames in 4 chunks at 3 ranks" "$TMP/chunks" \
+  "$TMP/chunks_serial" || fail "compressed frames in 4 chunks at 3 ranks: exit $rc"
 
 # Ranks x threads: 2 x 2.
 mpi 2 threads2 run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/threads2" --threads 2

@@ -2,7 +2,8 @@
 // HDF5 file reserved for them (h5::Group::reserve): ranks writing their
 // own rows of scattered ids give the file the HDF5 library reads back
 // exactly, and read their own rows of datasets the library wrote
-// (h5::Group::placed_offset); the arrays' hash adds over any split; a placement travels as
+// (h5::Group::placed_offset); a compressed frame's rows sent chunk by chunk
+// assemble into the whole frame's; the arrays' hash adds over any split; a placement travels as
 // text; failures name the file.
 #include <gtest/gtest.h>
 
@@ -16,9 +17,15 @@
 #include <vector>
 
 #include "src/core/hash.hpp"
+#include "src/core/parallel.hpp"
 #include "src/distributed/placed_rows.hpp"
+#include "src/distributed/thread_ranks.hpp"
 #include "src/io/hdf5_file.hpp"
+#include "src/solver/case_loader.hpp"
+#include "src/solver/distributed_step.hpp"
 #include "src/solver/rank_rows.hpp"
+#include "src/solver/simulation.hpp"
+#include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
 namespace {
@@ -177,6 +184,65 @@ TEST(PlacedRows, AFileThatCannotBeOpenedIsNamed) {
   }
 }
 
+// A compressed frame's rows: each rank's rows of each chunk of ids (a small
+// chunk here, so that chunks span ranks), assembled on "rank 0" in any order
+// of the ranks, are the whole state's frame rows in id order, bit for bit,
+// in the plane (surface marks from the gathered nodes) and in space.
+void expect_chunks_give_the_whole_frame(const CaseSpec& spec) {
+  SCOPED_TRACE(spec.name);
+  set_thread_count(1);
+  Simulation sim(spec);
+  const SolverState& global = sim.state();
+  const ParticleStore& p = global.particles;
+  const std::size_t n = p.size();
+  std::vector<FrameSurface> surfaces;
+  if (p.dimension != 3) {
+    std::vector<std::pair<Kind, const Shape*>> bodies;
+    for (const BodySpec& b : spec.bodies) bodies.emplace_back(b.kind, &b.shape);
+    surfaces = frame_surfaces(bodies, global.body_ranges, spec.l0);
+  }
+  const SurfaceMarks marks = whole_surface_marks(global, surfaces);
+  const std::vector<RowLayout>& layout = frame_row_layout(p.dimension);
+  const std::vector<std::size_t> by_id = p.storage_of_id();
+  const std::uint64_t per_chunk = 97;
+  const RowPlacement placement{RowPlacement::Content::compressed_frame, "", {n, per_chunk}, {}};
+  for (const int ranks : {2, 3}) {
+    set_thread_count(ranks);
+    ThreadMailboxes boxes(ranks);
+    // rows[r][c]: rank r's rows of chunk c.
+    std::vector<std::vector<std::vector<double>>> rows(static_cast<std::size_t>(ranks));
+    run_in_team([&] {
+      const auto me = static_cast<int>(team_rank());
+      serial_section([&] {
+        ThreadRanks world(boxes, me);
+        const RankPart part = make_rank_part(spec, global, world);
+        const FrameChunks chunks(part, world, surfaces, placement);
+        for (std::size_t c = 0; c < chunks.chunks(); ++c)
+          rows[static_cast<std::size_t>(me)].push_back(chunks.rows(c));
+      });
+    });
+    set_thread_count(1);
+    const std::size_t chunk_count = (n + per_chunk - 1) / per_chunk;
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      const std::size_t first = c * per_chunk, count = std::min<std::size_t>(per_chunk, n - first);
+      ChunkRows chunk(p.dimension, first, count);
+      for (int r = ranks - 1; r >= 0; --r) chunk.add(rows[static_cast<std::size_t>(r)].at(c));
+      const std::vector<std::size_t> members(by_id.begin() + static_cast<long>(first),
+                                             by_id.begin() + static_cast<long>(first + count));
+      for (std::size_t f = 0; f < layout.size(); ++f)
+        EXPECT_EQ(chunk.values()[f], frame_rows(layout[f], p, members, marks))
+            << layout[f].name << ", chunk " << c << ", " << ranks << " ranks";
+    }
+  }
+  set_thread_count(available_cores());
+}
+
+TEST(FrameChunks, RanksRowsChunkByChunkAreTheWholeFramesRows) {
+  expect_chunks_give_the_whole_frame(testing::rod_case({"l0=0.002"}));
+  expect_chunks_give_the_whole_frame(
+      load_case(testing::source_path("cases/spinning_cube.toml"), {}));
+}
+
 TEST(PlacedArrayHash, RanksTermsAddToTheWholeArraysHash) {
   std::vector<double> values(5000);
   for (std::size_t k = 0; k < values.size(); ++k)
@@ -205,7 +271,8 @@ TEST(PlacedArrayHash, RanksTermsAddToTheWholeArraysHash) {
 TEST(RowPlacement, TravelsAsText) {
   const RowPlacement p{RowPlacement::Content::checkpoint,
                        "/tmp/a folder/with spaces/checkpoint.h5.tmp",
-                       {2048, 18446744073709551000ull, 0}};
+                       {2048, 18446744073709551000ull, 0},
+                       {}};
   const RowPlacement q = decode_placement(encode_placement(p));
   EXPECT_EQ(q.content, p.content);
   EXPECT_EQ(q.file, p.file);
