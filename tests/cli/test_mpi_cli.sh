@@ -211,8 +211,9 @@ fi
 "$MPIEXEC" -np 2 --oversubscribe --allow-run-as-root "$BIN" run "$CASE" "${SETS[@]}" \
   --set time.end=2e-4 --out "$TMP/term" </dev/null >"$TMP/term.out" 2>"$TMP/term.err" &
 launcher=$!
-for _ in $(seq 200); do [[ -f "$TMP/term/checkpoint.h5" ]] && break; sleep 0.05; done
-sleep 0.3
+# Soon after the first checkpoint, well before the end.
+for _ in $(seq 1000); do [[ -f "$TMP/term/checkpoint.h5" ]] && break; sleep 0.01; done
+sleep 0.05
 kill -TERM "$launcher"
 waited=0
 while kill -0 "$launcher" 2>/dev/null && [[ $waited -lt 120 ]]; do sleep 0.5; waited=$((waited + 1)); done
