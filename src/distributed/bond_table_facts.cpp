@@ -37,7 +37,7 @@ std::uint64_t hash_in_rank_order(const RankGroup& world, std::uint64_t value,
 }  // namespace
 
 void BondTableFacts::append_to(std::vector<double>& out) const {
-  out.push_back(static_cast<double>(bonds));
+  out.push_back(static_cast<double>(count));
   append_bits(hash, out);
 }
 

@@ -16,7 +16,7 @@
 namespace mpsolid {
 
 struct BondTableFacts {
-  std::size_t bonds = 0;   // each once
+  std::size_t count = 0;   // bonds, each once
   std::uint64_t hash = 0;  // BondTable::hash of the whole table
 
   // As doubles for a message (the hash as two exact halves), and back.

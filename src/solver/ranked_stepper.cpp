@@ -473,8 +473,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     throw std::runtime_error(write_failure);
   }
   if (how.head) {
-    counts_.bonds = bonds.bonds;
-    counts_.bond_hash = bonds.hash;
+    counts_.bonds = bonds;
   }
   if (how.fields) out.strain_energy = combine_ordered_sum(energy_parts)[0];
   if (how.check) check_ = checks.finish(global, d, out);

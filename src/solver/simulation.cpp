@@ -192,11 +192,12 @@ std::size_t Simulation::particle_count() const {
 }
 
 std::size_t Simulation::bond_count() const {
-  return stepper_->holds_particles() ? state_.bonds.entry_count() / 2 : stepper_->counts().bonds;
+  return stepper_->holds_particles() ? state_.bonds.entry_count() / 2
+                                     : stepper_->counts().bonds.count;
 }
 
 std::uint64_t Simulation::bond_hash() const {
-  return stepper_->holds_particles() ? state_.bonds.hash() : stepper_->counts().bond_hash;
+  return stepper_->holds_particles() ? state_.bonds.hash() : stepper_->counts().bonds.hash;
 }
 
 std::int64_t Simulation::gas_steps() const {

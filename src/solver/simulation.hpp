@@ -25,9 +25,9 @@ class GasCoupling;
 
 // Over MPI ranks, whether rank 0 keeps a copy of the particles and bonds:
 // only where it must (`as_needed`: a case with contact, a gas or a pressure
-// load, whose reads rank 0 does from its copy), or
-// always (`whole`: a resume from a checkpoint whose rows cannot be read in
-// place, which restores the whole checkpoint there).
+// load, whose reads rank 0 does from its copy), or always (`whole`: a
+// resume from a checkpoint whose rows cannot be read in place, which
+// restores the whole checkpoint there).
 enum class RankZeroCopy { as_needed, whole };
 // Whether rank 0 of several keeps the whole copy for `spec` asked `copy`.
 bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy);

@@ -14,6 +14,7 @@
 #include "src/core/solver_state.hpp"
 #include "src/core/stable_step_estimate.hpp"
 #include "src/core/timers.hpp"
+#include "src/distributed/bond_table_facts.hpp"
 #include "src/solver/rank_checks.hpp"
 
 namespace mpsolid {
@@ -37,8 +38,7 @@ struct ParticleFacts {
 // What rank 0 records of the particles and bonds when it holds none of them.
 struct RunCounts {
   std::size_t particles = 0;
-  std::size_t bonds = 0;        // each once
-  std::uint64_t bond_hash = 0;  // BondTable::hash of the whole table
+  BondTableFacts bonds;
 };
 
 class Stepper {

@@ -136,7 +136,7 @@ void expect_the_whole_states_head(const std::string& case_file,
     });
     set_thread_count(1);
     for (const BondTableFacts& f : facts) {
-      EXPECT_EQ(f.bonds, w.state.bonds.entry_count() / 2);
+      EXPECT_EQ(f.count, w.state.bonds.entry_count() / 2);
       EXPECT_EQ(f.hash, w.state.bonds.hash());
     }
     SolverState head;
