@@ -49,42 +49,57 @@ double pair_stiffness(const CaseSpec& spec) {
 }
 }  // namespace
 
-ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
-  ContactState c;
-  if (!spec.contact.enabled) return c;
+void find_contact_candidates(const CaseSpec& spec, const SolverState& s, Range rows,
+                             CandidateList& out) {
+  if (!spec.contact.enabled) return;
   const ParticleStore& p = s.particles;
   const BondTable& bonds = s.bonds;
+  const int interior_bonds =
+      lattice_sites_within(p.dimension, bonds.geometry.re / bonds.geometry.l0 * (1.0 - 1e-12));
+  // The contacting bodies' ranges met in storage order.
+  std::vector<std::pair<Range, std::int32_t>> bodies;
+  for (const int b : spec.contact.bodies) {
+    const Range r = s.body_ranges[static_cast<std::size_t>(b)];
+    const Kind kind = spec.bodies[static_cast<std::size_t>(b)].kind;
+    bodies.push_back({r, kind == Kind::wall    ? kWallGroup
+                         : kind == Kind::rigid ? static_cast<std::int32_t>(b)
+                                               : kNoContactGroup});
+  }
+  std::sort(bodies.begin(), bodies.end(),
+            [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
+  for (const auto& [r, group] : bodies)
+    for (std::size_t i = std::max(r.begin, rows.begin); i < std::min(r.end, rows.end); ++i) {
+      int same_body = 0;
+      for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k)
+        same_body += p.body[bonds.neighbor[k]] == p.body[i];
+      if (same_body >= interior_bonds) continue;
+      out.index.push_back(static_cast<std::uint32_t>(i));
+      out.group.push_back(group);
+    }
+}
+
+ContactState contact_over(const CaseSpec& spec, const ParticleStore& p, CandidateList candidates) {
+  ContactState c;
   c.parameters.distance = spec.contact.distance * spec.l0;
   c.parameters.skin = spec.contact.skin * spec.l0;
   c.parameters.stiffness = pair_stiffness(spec);
   c.parameters.min_distance = spec.contact.min_distance * c.parameters.distance;
-  const int interior_bonds =
-      lattice_sites_within(p.dimension, bonds.geometry.re / bonds.geometry.l0 * (1.0 - 1e-12));
-  std::vector<bool> contacting(p.size(), false);
-  std::vector<std::int32_t> group_of(p.size(), kNoContactGroup);
-  for (const int b : spec.contact.bodies) {
-    const Range r = s.body_ranges[static_cast<std::size_t>(b)];
-    const Kind kind = spec.bodies[static_cast<std::size_t>(b)].kind;
-    for (std::size_t i = r.begin; i < r.end; ++i) {
-      contacting[i] = true;
-      group_of[i] = kind == Kind::wall ? kWallGroup : kind == Kind::rigid ? b : kNoContactGroup;
-    }
-  }
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!contacting[i]) continue;
-    int same_body = 0;
-    for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k)
-      same_body += p.body[bonds.neighbor[k]] == p.body[i];
-    if (same_body >= interior_bonds) continue;
-    c.candidates.push_back(static_cast<std::uint32_t>(i));
-    c.group.push_back(group_of[i]);
-  }
+  c.candidates = std::move(candidates.index);
+  c.group = std::move(candidates.group);
   c.first_moving = static_cast<std::size_t>(
       std::find_if(c.candidates.begin(), c.candidates.end(),
                    [&](std::uint32_t i) { return p.kind[i] != Kind::wall; }) -
       c.candidates.begin());
   c.zero_forces(p.dimension);
-  build_contact_list(c, p, bonds);
+  return c;
+}
+
+ContactState make_contact(const CaseSpec& spec, const SolverState& s) {
+  if (!spec.contact.enabled) return {};
+  CandidateList candidates;
+  find_contact_candidates(spec, s, s.particles.all(), candidates);
+  ContactState c = contact_over(spec, s.particles, std::move(candidates));
+  build_contact_list(c, s.particles, s.bonds);
   return c;
 }
 

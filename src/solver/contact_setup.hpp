@@ -17,6 +17,19 @@ namespace mpsolid {
 // Empty (disabled) when the case has no contact.
 ContactState make_contact(const CaseSpec& spec, const SolverState& s);
 
+// The candidates among the particles `rows` of `s`, whose bond rows must be
+// whole, in storage order: their indices and groups appended.
+struct CandidateList {
+  std::vector<std::uint32_t> index;
+  std::vector<std::int32_t> group;
+};
+void find_contact_candidates(const CaseSpec& spec, const SolverState& s, Range rows,
+                             CandidateList& out);
+
+// The contact of the case over `candidates` (indices into `p`, ascending):
+// its parameters, groups and forces, without a list yet.
+ContactState contact_over(const CaseSpec& spec, const ParticleStore& p, CandidateList candidates);
+
 // A bound on the squared angular frequency contact adds to the system:
 // 2 z k / m, with z the most lattice sites closer than d to any point and m
 // the lightest candidate that moves (Gershgorin's bound on the pair

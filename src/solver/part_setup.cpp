@@ -8,13 +8,14 @@
 #include "kernels/model_registry.hpp"
 #include "neighbor/bond_search.hpp"
 #include "src/core/ordered_sum.hpp"
+#include "src/solver/contact_setup.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/setup.hpp"
 
 namespace mpsolid {
 
 bool part_set_up_covers(const CaseSpec& spec) {
-  if (spec.contact.enabled || spec.gas.enabled) return false;
+  if (spec.gas.enabled) return false;
   return std::none_of(spec.loads.begin(), spec.loads.end(),
                       [](const LoadSpec& l) { return l.type == LoadSpec::Type::pressure; });
 }
@@ -34,13 +35,14 @@ struct HeldSite {
   Point3 at;
 };
 
-// The sites of the owned range `mine` and every site within `reach` of
-// the box of the owned sites of one body, in global storage order. A bond
-// joins sites closer than the reach, so every partner of an owned site lies
-// within reach of its body's box; one box per body keeps a small body that
-// spans the case (a wall, a plate) from pulling in every site beside it.
+// The sites of the owned range `mine`, every site within `reach` of the
+// box of the owned sites of one body and the sites `also` (global storage
+// indices, ascending), in global storage order. A bond joins sites closer
+// than the reach, so every partner of an owned site lies within reach of
+// its body's box; one box per body keeps a small body that spans the case
+// (a wall, a plate) from pulling in every site beside it.
 std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout, Range mine,
-                                 double reach) {
+                                 double reach, const std::vector<std::uint32_t>& also) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   struct Box {
     std::array<double, 3> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
@@ -66,7 +68,8 @@ std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout,
     visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
       const std::size_t g = r.begin + k;
       const double c[3] = {at.x, at.y, at.z};
-      bool near = g >= mine.begin && g < mine.end;
+      bool near =
+          (g >= mine.begin && g < mine.end) || std::binary_search(also.begin(), also.end(), g);
       for (std::size_t n = 0; n < boxes.size() && !near; ++n) {
         near = true;
         for (int a = 0; a < 3; ++a)
@@ -173,41 +176,87 @@ Decomposition decompose_case(const CaseSpec& spec, int ranks) {
   return decompose_count(layout.total, ranks, whole);
 }
 
-LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
+namespace {
+// The held sites as a state of their own, in global order ("window"
+// indices), placed and bonded as set_up places and bonds the whole; each
+// one's global storage index.
+struct Window {
+  SolverState state;
+  std::vector<std::uint32_t> global_of;
+  std::size_t index(std::size_t g) const {
+    return static_cast<std::size_t>(std::lower_bound(global_of.begin(), global_of.end(), g) -
+                                    global_of.begin());
+  }
+  Range range(Range r) const { return {index(r.begin), index(r.end)}; }
+};
+Window make_window(const CaseSpec& spec, const BodyLayout& layout, const BondGeometry& geometry,
+                   const std::vector<HeldSite>& sites) {
+  Window w;
+  ParticleStore& p = w.state.particles;
+  p.dimension = spec.dimension;
+  p.resize(sites.size());
+  w.global_of.resize(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const HeldSite& h = sites[i];
+    place_particle(p, i, spec, h.body, h.at, layout.first_id[h.body] + h.k);
+    w.global_of[i] = static_cast<std::uint32_t>(h.global);
+  }
+  p.set_kind_ranges();
+  w.state.bonds = build_bonds(p, geometry);
+  w.state.body_ranges.resize(spec.bodies.size());
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    w.state.body_ranges[b] = w.range(layout.range[b]);
+  return w;
+}
+
+// Every contact candidate of the run (global storage indices, ascending)
+// and its group: each rank finds those among its own sites, whose bond rows
+// the window holds whole, and the ranks share them in rank order.
+CandidateList every_candidate(const CaseSpec& spec, const Window& w, Range mine,
+                              const RankGroup& world) {
+  CandidateList own;
+  find_contact_candidates(spec, w.state, w.range(mine), own);
+  std::vector<double> pairs;
+  for (std::size_t k = 0; k < own.index.size(); ++k)
+    pairs.insert(pairs.end(), {static_cast<double>(w.global_of[own.index[k]]),
+                               static_cast<double>(own.group[k])});
+  const std::vector<double> all = world.all_gather(pairs);
+  CandidateList every;
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) {
+    every.index.push_back(static_cast<std::uint32_t>(all[k]));
+    every.group.push_back(static_cast<std::int32_t>(all[k + 1]));
+  }
+  return every;
+}
+}  // namespace
+
+LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
+                      const RankGroup* world) {
   if (!part_set_up_covers(spec))
-    throw std::logic_error("set_up_part: a case with contact, a gas or a pressure load");
+    throw std::logic_error("set_up_part: a case with a gas or a pressure load");
+  if (spec.contact.enabled && world == nullptr)
+    throw std::logic_error("set_up_part: contact needs the ranks to share their candidates");
   const BodyLayout layout = body_layout(spec);
   const Range mine = d.owned(rank);
   const BondGeometry geometry = case_bond_geometry(spec);
   // A bond joins sites closer than re: every partner of an owned site lies
   // within re of the owned sites' box.
-  const std::vector<HeldSite> sites =
-      held_sites(spec, layout, mine, geometry.re * (1.0 + 1e-9) + 1e-9 * spec.l0);
-
-  // The held sites as a state of their own, in global order ("window"
-  // indices), set up as set_up sets the whole.
-  SolverState s;
-  ParticleStore& p = s.particles;
-  p.dimension = spec.dimension;
-  p.resize(sites.size());
-  std::vector<std::uint32_t> global_of(sites.size());
-  for (std::size_t w = 0; w < sites.size(); ++w) {
-    const HeldSite& h = sites[w];
-    place_particle(p, w, spec, h.body, h.at, layout.first_id[h.body] + h.k);
-    global_of[w] = static_cast<std::uint32_t>(h.global);
+  const double reach = geometry.re * (1.0 + 1e-9) + 1e-9 * spec.l0;
+  Window window = make_window(spec, layout, geometry, held_sites(spec, layout, mine, reach, {}));
+  if (spec.contact.enabled) {
+    // Every candidate of the run among the part's particles (the decomposed
+    // contact pass pairs them): those not held yet are added.
+    CandidateList every = every_candidate(spec, window, mine, *world);
+    if (!std::includes(window.global_of.begin(), window.global_of.end(), every.index.begin(),
+                       every.index.end()))
+      window =
+          make_window(spec, layout, geometry, held_sites(spec, layout, mine, reach, every.index));
+    for (std::uint32_t& g : every.index) g = static_cast<std::uint32_t>(window.index(g));
+    window.state.contact = contact_over(spec, window.state.particles, std::move(every));
   }
-  p.set_kind_ranges();
-  s.bonds = build_bonds(p, geometry);
-  const auto window_index = [&](std::size_t g) {
-    return static_cast<std::size_t>(std::lower_bound(global_of.begin(), global_of.end(), g) -
-                                    global_of.begin());
-  };
-  const auto window_range = [&](Range r) {
-    return Range{window_index(r.begin), window_index(r.end)};
-  };
-  s.body_ranges.resize(spec.bodies.size());
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
-    s.body_ranges[b] = window_range(layout.range[b]);
+  SolverState& s = window.state;
+  ParticleStore& p = s.particles;
+  const std::vector<std::uint32_t>& global_of = window.global_of;
 
   // Rigid bodies and loaded bodies this rank owns, whole (set_up's order).
   for (const std::size_t b : layout.order) {
@@ -238,9 +287,9 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank) {
 
   // The part in window indices (the cut there: each rank's first held
   // particle), then in global ones.
-  Decomposition window;
-  for (const std::size_t start : d.starts) window.starts.push_back(window_index(start));
-  LocalPart part = local_part(s, window, rank);
+  Decomposition window_cut;
+  for (const std::size_t start : d.starts) window_cut.starts.push_back(window.index(start));
+  LocalPart part = local_part(s, window_cut, rank);
   part.decomposition = d;
   for (std::uint32_t& g : part.layout.global_of) g = global_of[g];
   part.layout.owned_global = mine;

@@ -10,11 +10,12 @@
 #include "src/case/case_spec.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/part_message.hpp"
+#include "src/distributed/rank_group.hpp"
 
 namespace mpsolid {
 
-// Whether set_up_part covers the case: no contact, gas or pressure load
-// (their candidates, outlines and surface nodes come from the whole state).
+// Whether set_up_part covers the case: no gas or pressure load (their
+// outlines and surface nodes come from the whole state).
 bool part_set_up_covers(const CaseSpec& spec);
 
 // The case's cut over `ranks` from its particle count alone (no rank holds
@@ -23,8 +24,11 @@ bool part_set_up_covers(const CaseSpec& spec);
 Decomposition decompose_case(const CaseSpec& spec, int ranks);
 
 // Rank `rank`'s part of the case cut by `d`, its loads not yet scheduled
-// (schedule_loads, once dt is fixed). Throws std::invalid_argument for a
+// (schedule_loads, once dt is fixed). With contact every rank of `world`
+// calls it together: each finds the contact candidates among its own
+// particles and the ranks share them. Throws std::invalid_argument for a
 // rigid or loaded body the cut splits.
-LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank);
+LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
+                      const RankGroup* world = nullptr);
 
 }  // namespace mpsolid

@@ -81,6 +81,16 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
     probes.insert(probes.end(), {static_cast<double>(k), at[0], at[1], at[2]});
   }
   append_list(probes, out);
+  // Its own moving contact candidates' positions, in candidate order, and
+  // the first step its contact pass found a pair too close.
+  const ContactState& c = part.local.contact;
+  std::vector<double> candidates;
+  for (std::size_t a = part.contact.owned.begin; a < part.contact.owned.end; ++a) {
+    const std::array<double, 3> at = position_of(p, c.candidates[a]);
+    candidates.insert(candidates.end(), at.begin(), at.begin() + (p.dimension == 3 ? 3 : 2));
+  }
+  append_list(candidates, out);
+  out.push_back(static_cast<double>(c.too_close.step.load()));
 }
 
 void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverState& global,
@@ -113,6 +123,15 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverStat
   for (std::size_t k = 0; k + 4 <= probes.size(); k += 4)
     figures_.readings.probes.at(static_cast<std::size_t>(probes[k])) = {
         probes[k + 1], probes[k + 2], probes[k + 3]};
+  // Ranks own ascending ranges: their candidates in rank order are in
+  // candidate order.
+  const std::vector<double> candidates = read_list(in, at);
+  figures_.candidate_positions.insert(figures_.candidate_positions.end(), candidates.begin(),
+                                      candidates.end());
+  if (at >= in.size()) throw std::runtime_error("a rank's check cut short");
+  const auto too_close = static_cast<std::int64_t>(in[at++]);
+  if (too_close >= 0 && (figures_.too_close < 0 || too_close < figures_.too_close))
+    figures_.too_close = too_close;
 }
 
 CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& d,

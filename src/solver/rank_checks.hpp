@@ -4,7 +4,8 @@
 // non-finite particle, the loads' and drivers' work) computed by each rank
 // on its own particles and combined on rank 0 with the bits of the whole
 // state's, so that a check moves no rank's slice. Used where the check reads
-// nothing else of the particles: no contact, no gas, no pressure load.
+// nothing else of the particles but contact's candidates (rank 0 keeps a
+// copy of those: src/solver/contact_copy.hpp): no gas, no pressure load.
 #include <cstddef>
 #include <vector>
 
@@ -23,11 +24,17 @@ struct CheckFigures {
   Fastest fastest;          // the first fastest moving particle
   IntegrityReport integrity;
   HistoryReadings readings;  // what a history row reads of the particles
+  // With contact: the moving candidates' positions (x, y[, z] each, in
+  // candidate order) and the first step any rank found a pair too close
+  // (-1: none).
+  std::vector<double> candidate_positions;
+  std::int64_t too_close = -1;
 };
 
 // A rank's share, appended to `out` (its owned particles, in global storage
 // indices; its own loads' and rigid bodies' work and fields in their order;
-// its part of the elastic bodies' extents and its probes).
+// its part of the elastic bodies' extents, its probes and its moving
+// contact candidates).
 void append_rank_check(const RankPart& part, std::vector<double>& out);
 
 // Every rank's share read in rank order, then the figures.

@@ -10,6 +10,7 @@
 #include "src/distributed/bond_table_facts.hpp"
 #include "src/distributed/state_slice.hpp"
 #include "src/solver/case_loader.hpp"
+#include "src/solver/contact_copy.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/rank_rows.hpp"
@@ -70,6 +71,16 @@ RankTimes read_report(const std::vector<double>& in, std::size_t at, int rank,
   t.ghosts = in[at + 8];
   t.peak_memory_bytes = in[at + 9];
   return t;
+}
+
+// A follower's first message: the cut, for it to set its part up from the
+// case, or word that its part follows (in pieces); empty: the case was
+// refused.
+constexpr double kCutFollows = 0.0, kPartFollows = 1.0;
+std::vector<double> cut_message(const Decomposition& d) {
+  std::vector<double> message{kCutFollows};
+  message.insert(message.end(), d.starts.begin(), d.starts.end());
+  return message;
 }
 
 InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
@@ -245,18 +256,19 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
-  // A case the set-up by part covers: each follower sets its own part up
-  // from the case and the cut, which is all rank 0 sends.
-  if (part_set_up_covers(spec)) {
-    const std::vector<double> cut(decomposition.starts.begin(), decomposition.starts.end());
-    for (int r = 1; r < world.size(); ++r) world.send(r, cut);
+  // A case the set-up by part covers without the ranks' help (contact's
+  // candidates are shared by the ranks as they set up): each follower sets
+  // its own part up from the case and the cut, which is all rank 0 sends.
+  // Otherwise each follower's part, built and sent one at a time (rank 0
+  // never holds two); an empty message tells a follower the case was
+  // refused.
+  if (part_set_up_covers(spec) && !spec.contact.enabled) {
+    for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(decomposition));
   } else {
-    // Otherwise each follower's part, built and sent one at a time (rank 0
-    // never holds two); an empty message tells a follower the case was
-    // refused.
     for (int r = 1; r < world.size(); ++r) {
       try {
         const LocalPart part = local_part(global, decomposition, r);
+        world.send(r, {kPartFollows});
         pack_local_part(part, [&](const std::vector<double>& piece) { world.send(r, piece); });
       } catch (const std::invalid_argument& e) {
         for (int rest = r; rest < world.size(); ++rest) world.send(rest, {});
@@ -280,10 +292,9 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   followers.send_case(spec.resolved_toml);
   const Decomposition cut = decompose_case(spec, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
-  const std::vector<double> starts(cut.starts.begin(), cut.starts.end());
-  for (int r = 1; r < world.size(); ++r) world.send(r, starts);
+  for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(cut));
   try {
-    parts_ = make_parts(spec, set_up_part(spec, cut, 0));
+    parts_ = make_parts(spec, set_up_part(spec, cut, 0, &world));
   } catch (const std::invalid_argument& e) {
     throw refusal(spec, e.what(), world.size());
   }
@@ -298,6 +309,9 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   head.probes = parts_->part.probes;
   head.damping = mine.damping;
   head.step = mine.step;
+  if (mine.contact.enabled())
+    contact_copy_ = std::make_unique<ContactCopy>(
+        copy_contact_candidates(mine, parts_->part.layout, head.contact));
   exchange(head, 0, {.head = true});
   put_loads_in_case_order(spec, head.loads);
   counts_.particles = cut.starts.back();
@@ -346,6 +360,12 @@ CheckFigures RankedStepper::check_figures(SolverState& global, PhaseTimers& time
   auto t = timers.time(Phase::strain);
   fields_ = exchange(global, 0, {.send_slices = ranks_behind_, .fields = true, .check = true});
   ranks_behind_ = false;
+  if (contact_copy_) {
+    place_moving_candidates(*contact_copy_, global.contact, check_.candidate_positions);
+    const std::int64_t first = global.contact.too_close.step.load();
+    if (check_.too_close >= 0 && (first < 0 || check_.too_close < first))
+      global.contact.too_close.step.store(check_.too_close);
+  }
   return check_;
 }
 
@@ -543,22 +563,18 @@ int follow_rank_zero(const Communicator& world) {
     // An empty first message: rank 0 refused the case (and reports it).
     std::vector<double> first = world.receive(0);
     std::unique_ptr<RankStepping> parts;
-    if (!first.empty() && part_set_up_covers(spec)) {
+    if (!first.empty() && first[0] == kCutFollows) {
       // The cut: this rank sets its own part up from the case.
       Decomposition cut;
-      for (const double start : first) cut.starts.push_back(static_cast<std::size_t>(start));
+      for (std::size_t k = 1; k < first.size(); ++k)
+        cut.starts.push_back(static_cast<std::size_t>(first[k]));
       try {
-        parts = make_parts(spec, set_up_part(spec, cut, world.rank()));
+        parts = make_parts(spec, set_up_part(spec, cut, world.rank(), &world));
       } catch (const std::invalid_argument& e) {
         end_job(world, fmt::format("rank {}: {}", world.rank(), e.what()));
       }
     } else if (!first.empty()) {
-      bool given = false;
-      parts = make_parts(spec, unpack_local_part([&] {
-                           if (given) return world.receive(0);
-                           given = true;
-                           return std::move(first);
-                         }));
+      parts = make_parts(spec, unpack_local_part([&] { return world.receive(0); }));
     }
     for (;;) {
       std::int64_t command = 0;

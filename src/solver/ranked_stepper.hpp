@@ -28,6 +28,7 @@
 #include "src/core/solver_state.hpp"
 #include "src/core/timers.hpp"
 #include "src/distributed/communicator.hpp"
+#include "src/solver/contact_copy.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/rank_checks.hpp"
 #include "src/solver/stepper.hpp"
@@ -135,6 +136,7 @@ class RankedStepper final : public Stepper {
                         PhaseTimers& timers) override;
   bool holds_particles() const override;
   RunCounts counts() const override { return counts_; }
+  ContactCopy* contact_copy() override { return contact_copy_.get(); }
   ParticleFacts particle_facts(SolverState& global, std::size_t i) override;
   // Each rank's report, asked now, with the slices' moves so far.
   std::vector<RankTimes> rank_times(SolverState& global) override;
@@ -156,6 +158,7 @@ class RankedStepper final : public Stepper {
 
   Followers& followers_;
   std::unique_ptr<RankStepping> parts_;
+  std::unique_ptr<ContactCopy> contact_copy_;  // no copy of the particles, with contact
   std::vector<RankTimes> rank_times_;
   struct SliceMoves {
     double moves = 0, bytes = 0;

@@ -10,6 +10,7 @@
 #include "neighbor/contact_search.hpp"
 #include "src/core/float_mode.hpp"
 #include "src/core/ordered_sum.hpp"
+#include "src/solver/contact_copy.hpp"
 #include "src/solver/contact_setup.hpp"
 #include "src/solver/gas_coupling.hpp"
 #include "src/solver/initial_motion.hpp"
@@ -103,7 +104,7 @@ void Simulation::advance(std::int64_t steps) {
 void Simulation::refresh_fields() {
   stepper_->refresh_fields(state_, timers_);
   fields_on_ranks_ = false;
-  if (state_.contact.enabled()) {
+  if (state_.contact.enabled() && stepper_->holds_particles()) {
     auto t = timers_.time(Phase::contact);
     refresh_contact_list(state_.contact, state_.particles, state_.bonds);
   }
@@ -160,17 +161,34 @@ PlacedRows Simulation::restore_without_copy(const std::function<void(SolverState
 Diagnostics Simulation::current_diagnostics() {
   auto t = timers_.time(Phase::diagnostics);
   Diagnostics d = diagnostics_with_strain_energy(state_, stepper_->strain_energy(state_));
-  const ContactState& c = state_.contact;
-  if (c.enabled()) {
-    d.contact_energy = ordered_sum<1>(0, c.size(), [&](std::size_t a) {
-      return std::array<double, 1>{contact_energy_share(c, state_.particles, a)};
-    })[0];
-    const double reach = contact_search_reach(spec_);
-    const ClosestContact closest = closest_contact(c, state_.particles, state_.bonds, reach);
-    d.contact_min_distance = closest.found ? closest.distance : reach;
-  }
+  add_contact_figures(d);
   if (gas_) d.gas = gas_->figures(state_);
   return d;
+}
+
+Simulation::ContactParticles Simulation::contact_particles() {
+  if (ContactCopy* copy = stepper_->contact_copy())
+    return {copy->particles, copy->bonds, &copy->storage_index};
+  return {state_.particles, state_.bonds, nullptr};
+}
+
+void Simulation::add_contact_figures(Diagnostics& d) {
+  ContactState& c = state_.contact;
+  if (!c.enabled()) return;
+  const ContactParticles on = contact_particles();
+  if (on.storage_index) {
+    // Rank 0's list over its copy of the candidates: not one of the run's
+    // rebuilds, which the ranks count.
+    const std::int64_t rebuilds = c.rebuilds;
+    refresh_contact_list(c, on.particles, on.bonds);
+    c.rebuilds = rebuilds;
+  }
+  d.contact_energy = ordered_sum<1>(0, c.size(), [&](std::size_t a) {
+    return std::array<double, 1>{contact_energy_share(c, on.particles, a)};
+  })[0];
+  const double reach = contact_search_reach(spec_);
+  const ClosestContact closest = closest_contact(c, on.particles, on.bonds, reach);
+  d.contact_min_distance = closest.found ? closest.distance : reach;
 }
 
 Diagnostics Simulation::diagnostics() {
@@ -181,6 +199,7 @@ Diagnostics Simulation::diagnostics() {
     fields_on_ranks_ = true;
     rank_readings_ = std::move(f.readings);
     rank_readings_step_ = state_.step;
+    add_contact_figures(f.diagnostics);
     return f.diagnostics;
   }
   refresh_fields();
@@ -238,7 +257,8 @@ void Simulation::restore_gas() {
 }
 
 bool Simulation::checks_on_ranks() const {
-  if (!stepper_->checks_on_ranks() || state_.contact.enabled() || gas_) return false;
+  if (!stepper_->checks_on_ranks() || gas_) return false;
+  if (state_.contact.enabled() && !stepper_->contact_copy()) return false;
   return std::none_of(state_.loads.begin(), state_.loads.end(),
                       [](const StepLoad& l) { return l.is_pressure(); });
 }
@@ -256,6 +276,7 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     CheckFigures f = stepper_->check_figures(state_, timers_);
     rank_readings_ = std::move(f.readings);
     rank_readings_step_ = state_.step;
+    if (f.finite.ok && !f.integrity.failed) add_contact_figures(f.diagnostics);
     return judge(f, diagnostics_out);
   }
   CheckFigures f;
@@ -287,15 +308,19 @@ StabilityVerdict Simulation::judge(const CheckFigures& f, Diagnostics* diagnosti
     return v;
   }
   if (state_.contact.enabled()) {
-    const ParticleStore& p = state_.particles;
-    StabilityVerdict touch = check_interpenetration(state_.contact, p);
+    const ContactParticles on = contact_particles();
+    StabilityVerdict touch = check_interpenetration(state_.contact, on.particles);
     if (!touch.ok && !touch.has_neighbor) {  // they parted again: name the closest pair now
       const ClosestContact closest =
-          closest_contact(state_.contact, p, state_.bonds, contact_search_reach(spec_));
+          closest_contact(state_.contact, on.particles, on.bonds, contact_search_reach(spec_));
       touch.particle = closest.i;
       touch.neighbor = closest.j;
       touch.has_neighbor = closest.found;
       touch.value = closest.distance;
+    }
+    if (on.storage_index && touch.has_neighbor) {
+      touch.particle = on.storage_index->at(touch.particle);
+      touch.neighbor = on.storage_index->at(touch.neighbor);
     }
     if (!touch.ok) return touch;
   }

@@ -147,6 +147,17 @@ class Simulation {
 
  private:
   Diagnostics current_diagnostics();  // fields must be fresh
+  // What contact's figures read: rank 0's copy of the particles, or over
+  // ranks without one its copy of the candidates (of the last check's
+  // round), with each one's storage index.
+  struct ContactParticles {
+    const ParticleStore& particles;
+    const BondTable& bonds;
+    const std::vector<std::uint32_t>* storage_index;  // null: the particles are the state's
+  };
+  ContactParticles contact_particles();
+  // The contact energy and the closest pair, into `d`.
+  void add_contact_figures(Diagnostics& d);
   // Whether a check can read the ranks' shares instead of rank 0's copy:
   // over ranks, with nothing else of the particles to read (contact, a gas,
   // a pressure's nodes).

@@ -19,6 +19,8 @@
 
 namespace mpsolid {
 
+struct ContactCopy;  // src/solver/contact_copy.hpp
+
 // One particle as a blow-up's diagnosis names it.
 struct ParticleFacts {
   std::int64_t id = 0;
@@ -99,6 +101,9 @@ class Stepper {
   // loads and probes: then counts() has what it records of them).
   virtual bool holds_particles() const { return true; }
   virtual RunCounts counts() const { return {}; }
+  // Without them, with contact: rank 0's copy of the contact candidates,
+  // current after check_figures (the state's contact is over it).
+  virtual ContactCopy* contact_copy() { return nullptr; }
   // Particle i (global storage index) of the current state: from `state`
   // (brought up to date), or from the rank that owns it.
   virtual ParticleFacts particle_facts(SolverState& state, std::size_t i) {

@@ -24,7 +24,8 @@
 #  - run.json records the ranks and, per rank, its particles, its passes'
 #    times, and its halo time and bytes, and what rank 0 held: no copy of
 #    the particles for the rod (every rank sets its own part up), its
-#    resume and its compressed frames, a whole one with contact;
+#    resume and its compressed frames, and contact and its resume (rank 0
+#    keeps a copy of the candidates only), a whole one with a gas;
 #  - the particles stay on their ranks: no slice comes back to rank 0 for a
 #    check, a history row, a frame or a checkpoint (run.json's slice_moves):
 #    each rank writes its own particles' rows of the frames and checkpoints,
@@ -242,6 +243,8 @@ fi
 # Contact: the colliding blocks (finite_strain) at l0 = 0.5 mm (seven
 # chunks: every rank owns some) through the collision at 2 and 3 ranks, and
 # a 2-rank checkpoint written mid-collision resumed at 1 and at 3 ranks.
+# Rank 0 keeps no copy of the particles (only of the contact candidates,
+# whose positions each check brings), and no slice moves.
 C_CASE=cases/colliding_blocks.toml
 C_SETS=(--set l0=0.0005 --set output.frame_interval=3e-4 --set output.checkpoint_interval=3e-4
   --set output.history_interval=1e-5)
@@ -252,7 +255,13 @@ for ranks in 2 3; do
     --out "$TMP/contact$ranks"
   [[ $rc -eq 0 ]] && same "contact at $ranks ranks" "$TMP/contact$ranks" "$TMP/c_serial" ||
     fail "contact at $ranks ranks: exit $rc"
-  copy_is "contact at $ranks ranks" "$TMP/contact$ranks" whole
+  copy_is "contact at $ranks ranks" "$TMP/contact$ranks" none
+  moves=$(/usr/bin/python3 -c '
+import json, sys
+print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
+    "$TMP/contact$ranks/run.json")
+  [[ $moves == 0 ]] && ok "contact at $ranks ranks: no slice moved" ||
+    fail "contact at $ranks ranks: $moves slice moves"
 done
 # time.dt = "auto" is estimated on every rank's part, contact's bound
 # included: the serial estimate's bits (run.json).
@@ -284,6 +293,7 @@ cp -r "$TMP/c_half" "$TMP/c_half3"
 mpi 3 c_resume3 resume "$TMP/c_half3" --set time.end=2.4e-3
 [[ $rc -eq 0 ]] && same "contact, 2 ranks resumed at 3" "$TMP/c_half3" "$TMP/c_serial" ||
   fail "contact: resume at 3 ranks: exit $rc"
+copy_is "contact, 2 ranks resumed at 3" "$TMP/c_half3" none
 touched=$(/usr/bin/python3 -c '
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -384,6 +394,7 @@ for ranks in 2 3; do
   mpi "$ranks" "gas$ranks" run "${GAS[@]}" --set time.end=4e-5 --out "$TMP/gas$ranks" --threads 1
   [[ $rc -eq 0 ]] && same "$ranks ranks, gas" "$TMP/gas$ranks" "$TMP/gas_serial" ||
     fail "$ranks ranks, gas: exit $rc"
+  copy_is "$ranks ranks, gas" "$TMP/gas$ranks" whole
 done
 mpi 2 gas_half run "${GAS[@]}" --set time.end=2e-5 --out "$TMP/gas_half" --threads 1
 mpi 3 gas_resume resume "$TMP/gas_half" --set time.end=4e-5 --threads 1

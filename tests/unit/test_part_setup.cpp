@@ -4,16 +4,21 @@
 // the plane and in space, at 2, 3 and 5 ranks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "kernels/contact_force.hpp"
+#include "neighbor/contact_search.hpp"
 #include "src/core/parallel.hpp"
 #include "src/distributed/bond_table_facts.hpp"
 #include "src/distributed/part_message.hpp"
 #include "src/distributed/thread_ranks.hpp"
 #include "src/solver/case_loader.hpp"
+#include "src/solver/contact_copy.hpp"
+#include "src/solver/contact_setup.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/setup.hpp"
@@ -44,6 +49,24 @@ Whole whole_state(const std::string& case_file, const std::vector<std::string>& 
   return w;
 }
 
+// Every rank's part set up alone, the ranks together (threads as ranks:
+// with contact they share their candidates).
+std::vector<LocalPart> parts_set_up_alone(const CaseSpec& spec, const Decomposition& d) {
+  const int ranks = d.ranks(), threads_before = thread_count();
+  std::vector<LocalPart> parts(static_cast<std::size_t>(ranks));
+  set_thread_count(ranks);
+  ThreadMailboxes boxes(ranks);
+  run_in_team([&] {
+    const auto me = static_cast<int>(team_rank());
+    serial_section([&] {
+      const ThreadRanks world(boxes, me);
+      parts[static_cast<std::size_t>(me)] = set_up_part(spec, d, me, &world);
+    });
+  });
+  set_thread_count(threads_before);
+  return parts;
+}
+
 // Each rank's part both ways, at several rank counts.
 void expect_the_whole_states_parts(const std::string& case_file,
                                    const std::vector<std::string>& overrides = {}) {
@@ -53,9 +76,10 @@ void expect_the_whole_states_parts(const std::string& case_file,
   ASSERT_TRUE(part_set_up_covers(spec)) << case_file;
   for (const int ranks : {2, 3, 5}) {
     const Decomposition d = decompose_state(global, ranks);
+    const std::vector<LocalPart> parts = parts_set_up_alone(spec, d);
     for (int r = 0; r < ranks; ++r) {
       const std::vector<double> whole = message_of(local_part(global, d, r));
-      const std::vector<double> alone = message_of(set_up_part(spec, d, r));
+      const std::vector<double> alone = message_of(parts[static_cast<std::size_t>(r)]);
       ASSERT_EQ(whole.size(), alone.size()) << case_file << ", rank " << r << " of " << ranks;
       std::size_t first = 0;
       while (first < whole.size() && std::memcmp(&whole[first], &alone[first], sizeof(double)) == 0)
@@ -103,6 +127,23 @@ TEST(PartSetUp, ASpinningCube) {
 TEST(PartSetUp, ATumblingBrick) {
   expect_the_whole_states_parts("cases/tumbling_brick.toml");
 }
+// Contact: every candidate of the run in every part, found by the rank
+// that owns it.
+TEST(PartSetUp, CollidingBlocks) {
+  expect_the_whole_states_parts("cases/colliding_blocks.toml");
+}
+TEST(PartSetUp, ADiskHittingABlock) {
+  expect_the_whole_states_parts("cases/disk_impact.toml");
+}
+TEST(PartSetUp, TheRodPressingOnItsWallAndPlate) {
+  expect_the_whole_states_parts("cases/shock_rod_55kN.toml");
+}
+TEST(PartSetUp, CollidingSpheres) {
+  expect_the_whole_states_parts("cases/colliding_spheres.toml");
+}
+TEST(PartSetUp, TheRodInSpaceWithContact) {
+  expect_the_whole_states_parts("cases/shock_rod_3d.toml", {"contact.enabled=true"});
+}
 
 // What rank 0 keeps when it holds no particle, from every rank's part set
 // up alone on the cut made from the case (decompose_case): the bond table's
@@ -121,8 +162,7 @@ void expect_the_whole_states_head(const std::string& case_file,
   for (const int ranks : {2, 3, 5}) {
     SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
     const Decomposition d = decompose_case(w.spec, ranks);
-    std::vector<LocalPart> parts;
-    for (int r = 0; r < ranks; ++r) parts.push_back(set_up_part(w.spec, d, r));
+    const std::vector<LocalPart> parts = parts_set_up_alone(w.spec, d);
     std::vector<BondTableFacts> facts(static_cast<std::size_t>(ranks));
     set_thread_count(ranks);
     ThreadMailboxes boxes(ranks);
@@ -178,10 +218,91 @@ TEST(PartSetUp, ARigidBodyCutInTwoIsRefused) {
   }
 }
 
-TEST(PartSetUp, CasesWithContactAGasOrAPressureAreLeftToTheWholeState) {
-  for (const char* file :
-       {"cases/colliding_blocks.toml", "cases/giordano_panel.toml", "cases/ring_pressure.toml"})
+TEST(PartSetUp, CasesWithAGasOrAPressureAreLeftToTheWholeState) {
+  for (const char* file : {"cases/giordano_panel.toml", "cases/ring_pressure.toml"})
     EXPECT_FALSE(part_set_up_covers(load_case(testing::source_path(file)))) << file;
+  EXPECT_TRUE(part_set_up_covers(load_case(testing::source_path("cases/colliding_blocks.toml"))));
+}
+
+// Contact needs the ranks: a part set up without them is a mistake.
+TEST(PartSetUp, ContactWithoutTheRanksIsRefused) {
+  const CaseSpec spec = load_case(testing::source_path("cases/colliding_blocks.toml"));
+  EXPECT_THROW(set_up_part(spec, decompose_case(spec, 2), 0), std::logic_error);
+}
+
+// Rank 0's copy of the candidates (src/solver/contact_copy.hpp), from its
+// part set up alone, is the whole state's contact: the same candidates,
+// groups and walls, the same bonds between them, and the same contact
+// energy, closest pair and interpenetration verdict, at rest and with the
+// moving candidates moved about.
+void expect_the_whole_states_candidates(const std::string& case_file) {
+  Whole w = whole_state(case_file, {});
+  ContactState& whole = w.state.contact;
+  ParticleStore& p = w.state.particles;
+  for (const int ranks : {2, 3}) {
+    SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
+    const std::vector<LocalPart> parts = parts_set_up_alone(w.spec, decompose_case(w.spec, ranks));
+    ContactState c;
+    ContactCopy copy = copy_contact_candidates(parts[0].state, parts[0].layout, c);
+    ASSERT_EQ(copy.storage_index, whole.candidates);
+    EXPECT_EQ(c.group, whole.group);
+    EXPECT_EQ(c.first_moving, whole.first_moving);
+    for (std::size_t a = 0; a < c.size(); ++a)
+      for (std::size_t b = 0; b < c.size(); ++b) {
+        const std::size_t i = whole.candidates[a], j = whole.candidates[b];
+        const auto row = w.state.bonds.neighbor.begin();
+        const bool bonded = std::binary_search(row + w.state.bonds.begin(i),
+                                               row + w.state.bonds.end(i), std::uint32_t(j));
+        const auto copy_row = copy.bonds.neighbor.begin();
+        ASSERT_EQ(bonded, std::binary_search(copy_row + copy.bonds.begin(a),
+                                             copy_row + copy.bonds.end(a), std::uint32_t(b)))
+            << a << ", " << b;
+      }
+    // Each moving candidate moved on both by up to a contact distance along
+    // each axis, so that unbonded surface pairs (sqrt 5 l0 apart) touch.
+    std::uint64_t seed = 12345;
+    std::vector<double> moved;
+    for (std::size_t a = whole.first_moving; a < whole.size(); ++a) {
+      for (std::vector<double>* axis : {&p.x, &p.y, &p.z}) {
+        if (axis == &p.z && p.dimension != 3) continue;
+        seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        const double shift = (static_cast<double>(seed >> 11) / 9007199254740992.0 - 0.5) * 2.0 *
+                             whole.parameters.distance;
+        (*axis)[whole.candidates[a]] += shift;
+        moved.push_back((*axis)[whole.candidates[a]]);
+      }
+    }
+    place_moving_candidates(copy, c, moved);
+    refresh_contact_list(whole, p, w.state.bonds);
+    refresh_contact_list(c, copy.particles, copy.bonds);
+    const double reach = contact_search_reach(w.spec);
+    const ClosestContact a = closest_contact(whole, p, w.state.bonds, reach);
+    const ClosestContact b = closest_contact(c, copy.particles, copy.bonds, reach);
+    ASSERT_TRUE(a.found);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.i, copy.storage_index.at(b.i));
+    EXPECT_EQ(a.j, copy.storage_index.at(b.j));
+    double whole_energy = 0, copy_energy = 0;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      whole_energy += contact_energy_share(whole, p, k);
+      copy_energy += contact_energy_share(c, copy.particles, k);
+    }
+    EXPECT_GT(whole_energy, 0.0);
+    EXPECT_EQ(whole_energy, copy_energy);
+    const StabilityVerdict v = check_interpenetration(whole, p);
+    const StabilityVerdict u = check_interpenetration(c, copy.particles);
+    EXPECT_EQ(v.ok, u.ok);
+    EXPECT_EQ(v.value, u.value);
+    EXPECT_EQ(v.particle, copy.storage_index.at(u.particle));
+    // Undo the move for the next rank count.
+    w = whole_state(case_file, {});
+  }
+}
+
+TEST(PartSetUp, RankZerosCopyOfTheCandidatesIsTheWholeStatesContact) {
+  expect_the_whole_states_candidates("cases/colliding_blocks.toml");
+  expect_the_whole_states_candidates("cases/disk_impact.toml");
+  expect_the_whole_states_candidates("cases/colliding_spheres.toml");
 }
 
 }  // namespace
