@@ -15,9 +15,7 @@
 namespace mpsolid {
 
 bool part_set_up_covers(const CaseSpec& spec) {
-  if (spec.gas.enabled) return false;
-  return std::none_of(spec.loads.begin(), spec.loads.end(),
-                      [](const LoadSpec& l) { return l.type == LoadSpec::Type::pressure; });
+  return !spec.gas.enabled;
 }
 
 namespace {
@@ -232,8 +230,7 @@ CandidateList every_candidate(const CaseSpec& spec, const Window& w, Range mine,
 
 LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
                       const RankGroup* world) {
-  if (!part_set_up_covers(spec))
-    throw std::logic_error("set_up_part: a case with a gas or a pressure load");
+  if (!part_set_up_covers(spec)) throw std::logic_error("set_up_part: a case with a gas");
   if (spec.contact.enabled && world == nullptr)
     throw std::logic_error("set_up_part: contact needs the ranks to share their candidates");
   const BodyLayout layout = body_layout(spec);
@@ -273,6 +270,21 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   // schedule_loads).
   for (const LoadSpec& l : spec.loads) {
     const auto b = static_cast<std::size_t>(l.body);
+    if (l.type == LoadSpec::Type::pressure) {
+      // Every part holds every node of a pressure (local_solver_state):
+      // the whole body's surface, over the sites the window holds.
+      StepLoad load = body_load(l, s.body_ranges[b], p);
+      load.surface = local_pressure_surface(
+          case_pressure_surface(spec, l, layout.range[b].begin),
+          [&](std::uint32_t g) {
+            const std::size_t w = window.index(g);
+            return w < global_of.size() && global_of[w] == g ? static_cast<std::uint32_t>(w)
+                                                             : PressureSurface::kElsewhere;
+          },
+          [](std::uint32_t) { return false; });
+      s.loads.push_back(std::move(load));
+      continue;
+    }
     if (!overlaps(layout.range[b], mine)) continue;
     if (!inside(layout.range[b], mine)) throw split("the body of load", l.name);
     s.loads.push_back(body_load(l, s.body_ranges[b], p));

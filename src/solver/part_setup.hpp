@@ -14,8 +14,8 @@
 
 namespace mpsolid {
 
-// Whether set_up_part covers the case: no gas or pressure load (their
-// outlines and surface nodes come from the whole state).
+// Whether set_up_part covers the case: no gas (its bodies' outlines come
+// from the whole state).
 bool part_set_up_covers(const CaseSpec& spec);
 
 // The case's cut over `ranks` from its particle count alone (no rank holds

@@ -287,8 +287,8 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
 RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head)
     : followers_(followers) {
   const Communicator& world = followers.world();
-  if (!part_set_up_covers(spec))
-    throw std::logic_error("RankedStepper: no whole copy for a case the set-up by part leaves out");
+  if (rank_zero_needs_copy(spec, RankZeroCopy::as_needed))
+    throw std::logic_error("RankedStepper: no whole copy for a case whose checks read one");
   followers.send_case(spec.resolved_toml);
   const Decomposition cut = decompose_case(spec, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));

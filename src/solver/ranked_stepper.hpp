@@ -2,11 +2,12 @@
 // A run over several MPI ranks (docs/mpi.md). Rank 0 runs the command line
 // as always (the case, the set-up, the run loop, every check and output);
 // the other ranks follow it and hold only their part. Rank 0 sends each
-// follower the case and the cut (or, for a case with contact, a gas or a
-// pressure load, its part) once; then every rank steps its own particles
-// (the decomposed step) in batches that rank 0 commands. Where the case
-// allows, rank 0 keeps no copy of the particles, only the bodies, loads
-// and probes (RankZeroCopy, src/solver/simulation.hpp), and every read of
+// follower the case and the cut (or, for a case with a gas, or with
+// contact where rank 0 keeps a copy, its part) once; then every rank steps
+// its own particles (the decomposed step) in batches that rank 0 commands.
+// Where the case allows, rank 0 keeps no copy of the particles, only the
+// bodies, loads and probes (RankZeroCopy, src/solver/simulation.hpp; with
+// contact, a copy of the candidates), and every read of
 // the particles comes from the ranks: checks and history rows from their
 // shares, frames and checkpoints written by every rank in place
 // (src/solver/rank_rows.hpp), a blow-up's particle from its owner.
@@ -97,8 +98,9 @@ class RankedStepper final : public Stepper {
   // state: every body's range, the probes, every rigid body and load (from
   // the rank that owns it), the damping. Every read of the state then comes
   // from the ranks (checks, history rows, frames, checkpoints, a blow-up's
-  // particle); counts() has the particles and bonds. For a case the set-up
-  // by part covers (part_set_up_covers).
+  // particle); counts() has the particles and bonds; with contact rank 0
+  // keeps a copy of the candidates (contact_copy()). For a case whose
+  // checks read no copy (rank_zero_needs_copy).
   RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head);
   ~RankedStepper() override;
 

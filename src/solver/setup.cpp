@@ -106,6 +106,18 @@ StepLoad body_load(const LoadSpec& l, Range range, const ParticleStore& p) {
   return load;
 }
 
+PressureSurface case_pressure_surface(const CaseSpec& spec, const LoadSpec& l, std::size_t first) {
+  const BodySpec& body = spec.bodies[static_cast<std::size_t>(l.body)];
+  if (spec.dimension == 3) {
+    const Surface3 surface =
+        build_surface3(body.shape3, fill_shape3(body.shape3, spec.l0), spec.l0);
+    return make_pressure_surface3(surface, select_quads(surface, l.surface), first, l.pressure);
+  }
+  const Surface surface = build_surface(body.shape, fill_shape(body.shape, spec.l0), spec.l0);
+  return make_pressure_surface(surface, select_segments(surface, l.surface), first, l.pressure,
+                               spec.depth);
+}
+
 HeldRange body_hold(const BodySpec& body, Range range) {
   return {range, body.hold == Hold::x, body.hold == Hold::y, body.hold == Hold::z};
 }
@@ -166,17 +178,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
 
   for (const LoadSpec& l : spec.loads) {
     StepLoad load = body_load(l, s.body_ranges[static_cast<std::size_t>(l.body)], p);
-    if (l.type == LoadSpec::Type::pressure && spec.dimension == 3) {
-      const Shape3& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape3;
-      const Surface3 surface = build_surface3(shape, fill_shape3(shape, spec.l0), spec.l0);
-      load.surface = make_pressure_surface3(surface, select_quads(surface, l.surface),
-                                            load.range.begin, l.pressure);
-    } else if (l.type == LoadSpec::Type::pressure) {
-      const Shape& shape = spec.bodies[static_cast<std::size_t>(l.body)].shape;
-      const Surface surface = build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
-      load.surface = make_pressure_surface(surface, select_segments(surface, l.surface),
-                                           load.range.begin, l.pressure, spec.depth);
-    }
+    if (l.type == LoadSpec::Type::pressure)
+      load.surface = case_pressure_surface(spec, l, load.range.begin);
     s.loads.push_back(load);
   }
   add_gas_loads(spec, s);

@@ -32,6 +32,9 @@ void visit_body_sites(const CaseSpec& spec, std::size_t b,
 // the body's mass) on the particles `range` of `p`; a pressure's surface is
 // set up apart.
 StepLoad body_load(const LoadSpec& l, Range range, const ParticleStore& p);
+// A pressure load's surface (its selected segments, or in space quads) over
+// its whole body, whose first particle is storage index `first`.
+PressureSurface case_pressure_surface(const CaseSpec& spec, const LoadSpec& l, std::size_t first);
 // A held body's hold over the particles `range`.
 HeldRange body_hold(const BodySpec& body, Range range);
 // The bond geometry of the case's lattice (in the plane, over its depth).

@@ -41,7 +41,10 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
 }  // namespace
 
 bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy) {
-  return copy == RankZeroCopy::whole || !part_set_up_covers(spec);
+  // A pressure's checks read its nodes' current positions from rank 0's copy.
+  return copy == RankZeroCopy::whole || !part_set_up_covers(spec) ||
+         std::any_of(spec.loads.begin(), spec.loads.end(),
+                     [](const LoadSpec& l) { return l.type == LoadSpec::Type::pressure; });
 }
 
 Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)

@@ -24,8 +24,8 @@ class Followers;
 class GasCoupling;
 
 // Over MPI ranks, whether rank 0 keeps a copy of the particles and bonds:
-// only where it must (`as_needed`: a case with contact, a gas or a pressure
-// load, whose reads rank 0 does from its copy), or always (`whole`: a
+// only where it must (`as_needed`: a case with a gas or a pressure load,
+// whose reads rank 0 does from its copy), or always (`whole`: a
 // resume from a checkpoint whose rows cannot be read in place, which
 // restores the whole checkpoint there).
 enum class RankZeroCopy { as_needed, whole };

@@ -144,6 +144,20 @@ TEST(PartSetUp, CollidingSpheres) {
 TEST(PartSetUp, TheRodInSpaceWithContact) {
   expect_the_whole_states_parts("cases/shock_rod_3d.toml", {"contact.enabled=true"});
 }
+// Pressure loads: every part holds every node, positioning those whose
+// host it owns.
+TEST(PartSetUp, APressurisedRing) {
+  expect_the_whole_states_parts("cases/ring_pressure.toml");
+}
+TEST(PartSetUp, TheRodUnderAPressure) {
+  expect_the_whole_states_parts("cases/shock_rod_pressure.toml");
+}
+TEST(PartSetUp, ADiskUnderABlastWave) {
+  expect_the_whole_states_parts("cases/disk_blast.toml");
+}
+TEST(PartSetUp, TheRodInSpaceUnderAPressureWithContact) {
+  expect_the_whole_states_parts("cases/shock_rod_3d_pressure.toml");
+}
 
 // What rank 0 keeps when it holds no particle, from every rank's part set
 // up alone on the cut made from the case (decompose_case): the bond table's
@@ -218,10 +232,10 @@ TEST(PartSetUp, ARigidBodyCutInTwoIsRefused) {
   }
 }
 
-TEST(PartSetUp, CasesWithAGasOrAPressureAreLeftToTheWholeState) {
-  for (const char* file : {"cases/giordano_panel.toml", "cases/ring_pressure.toml"})
-    EXPECT_FALSE(part_set_up_covers(load_case(testing::source_path(file)))) << file;
-  EXPECT_TRUE(part_set_up_covers(load_case(testing::source_path("cases/colliding_blocks.toml"))));
+TEST(PartSetUp, CasesWithAGasAreLeftToTheWholeState) {
+  EXPECT_FALSE(part_set_up_covers(load_case(testing::source_path("cases/giordano_panel.toml"))));
+  for (const char* file : {"cases/colliding_blocks.toml", "cases/ring_pressure.toml"})
+    EXPECT_TRUE(part_set_up_covers(load_case(testing::source_path(file)))) << file;
 }
 
 // Contact needs the ranks: a part set up without them is a mistake.
