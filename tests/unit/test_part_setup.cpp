@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -49,21 +50,26 @@ Whole whole_state(const std::string& case_file, const std::vector<std::string>& 
   return w;
 }
 
-// Every rank's part set up alone, the ranks together (threads as ranks:
-// with contact they share their candidates).
-std::vector<LocalPart> parts_set_up_alone(const CaseSpec& spec, const Decomposition& d) {
-  const int ranks = d.ranks(), threads_before = thread_count();
-  std::vector<LocalPart> parts(static_cast<std::size_t>(ranks));
+// Calls f(world, rank) on every one of `ranks` ranks together (threads as
+// ranks), then goes back to the thread count before.
+void as_ranks(int ranks, const std::function<void(const RankGroup&, int)>& f) {
+  const int threads_before = thread_count();
   set_thread_count(ranks);
   ThreadMailboxes boxes(ranks);
   run_in_team([&] {
     const auto me = static_cast<int>(team_rank());
-    serial_section([&] {
-      const ThreadRanks world(boxes, me);
-      parts[static_cast<std::size_t>(me)] = set_up_part(spec, d, me, &world);
-    });
+    serial_section([&] { f(ThreadRanks(boxes, me), me); });
   });
   set_thread_count(threads_before);
+}
+
+// Every rank's part set up alone, the ranks together (with contact they
+// share their candidates).
+std::vector<LocalPart> parts_set_up_alone(const CaseSpec& spec, const Decomposition& d) {
+  std::vector<LocalPart> parts(static_cast<std::size_t>(d.ranks()));
+  as_ranks(d.ranks(), [&](const RankGroup& world, int me) {
+    parts[static_cast<std::size_t>(me)] = set_up_part(spec, d, me, &world);
+  });
   return parts;
 }
 
@@ -178,17 +184,10 @@ void expect_the_whole_states_head(const std::string& case_file,
     const Decomposition d = decompose_case(w.spec, ranks);
     const std::vector<LocalPart> parts = parts_set_up_alone(w.spec, d);
     std::vector<BondTableFacts> facts(static_cast<std::size_t>(ranks));
-    set_thread_count(ranks);
-    ThreadMailboxes boxes(ranks);
-    run_in_team([&] {
-      const auto me = static_cast<int>(team_rank());
-      serial_section([&] {
-        const LocalPart& part = parts[static_cast<std::size_t>(me)];
-        facts[static_cast<std::size_t>(me)] =
-            bond_table_facts(part.state.bonds, part.layout, ThreadRanks(boxes, me));
-      });
+    as_ranks(ranks, [&](const RankGroup& world, int me) {
+      const LocalPart& part = parts[static_cast<std::size_t>(me)];
+      facts[static_cast<std::size_t>(me)] = bond_table_facts(part.state.bonds, part.layout, world);
     });
-    set_thread_count(1);
     for (const BondTableFacts& f : facts) {
       EXPECT_EQ(f.count, w.state.bonds.entry_count() / 2);
       EXPECT_EQ(f.hash, w.state.bonds.hash());
@@ -214,7 +213,6 @@ TEST(PartSetUp, TheRanksGiveTheWholeBondTablesFactsAndEveryBodyAndLoad) {
   expect_the_whole_states_head("cases/holed_plate_grips.toml");
   expect_the_whole_states_head("cases/shock_rod_3d.toml");
   expect_the_whole_states_head("cases/tumbling_brick.toml");
-  set_thread_count(available_cores());
 }
 
 // A cut through the plate (a rigid body) is refused both ways.
