@@ -1,6 +1,7 @@
 #include "src/core/loads.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "src/core/ordered_sum.hpp"
 
@@ -262,6 +263,32 @@ void close_running_step(const ParticleStore& p, StepLoad& load) {
   PressureSurface& s = load.surface;
   load.work += running_pressure_work(p, s);
   for (std::size_t k = 0; k < s.nodes(); ++k) start_node(s, k, node_now(p, s, k));
+}
+
+void append_hosted_node_positions(const ParticleStore& p, const std::vector<StepLoad>& loads,
+                                  std::vector<double>& out) {
+  std::size_t ordinal = 0;
+  for (const StepLoad& load : loads) {
+    if (!load.is_pressure()) continue;
+    if (load.active)
+      for (const std::uint32_t k : load.surface.hosted) {
+        const NodePosition at = node_now(p, load.surface, k);
+        out.insert(out.end(),
+                   {static_cast<double>(ordinal), static_cast<double>(k), at.x, at.y, at.z});
+      }
+    ++ordinal;
+  }
+}
+
+double pressure_work_at(const StepLoad& load, const std::vector<double>& xyz) {
+  if (!load.active) return 0.0;
+  const PressureSurface& s = load.surface;
+  if (xyz.size() != 3 * s.nodes())
+    throw std::logic_error("pressure_work_at: not every node's position");
+  double work = 0;
+  for (std::size_t k = 0; k < s.nodes(); ++k)
+    work += node_work(s, k, {xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]});
+  return load.work + work;
 }
 
 bool any_pressure(const std::vector<StepLoad>& loads) {

@@ -128,6 +128,16 @@ void pressure_forces(StepLoad& load);
 // whichever way the new forces reach the particles.
 void close_running_step(const ParticleStore& p, StepLoad& load);
 
+// The current positions of the nodes this part hosts of each active
+// pressure load of `loads`, appended as (the load's place among the
+// pressure loads, node, x, y, z) each: what a part sends for a pressure's
+// work when no process holds the whole state.
+void append_hosted_node_positions(const ParticleStore& p, const std::vector<StepLoad>& loads,
+                                  std::vector<double>& out);
+// A pressure load's work so far (load_work's) from every node's current
+// position, `xyz` (x, y, z per node, z = 0 in the plane).
+double pressure_work_at(const StepLoad& load, const std::vector<double>& xyz);
+
 // Whether any of `loads` is a pressure.
 bool any_pressure(const std::vector<StepLoad>& loads);
 

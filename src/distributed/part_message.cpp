@@ -355,8 +355,10 @@ void append_owned_items(const SolverState& local, const LocalLayout& layout,
     b.range = to_global(b.range, layout);
     put_body(to, b);
   });
-  put_items(w, local.loads, [&](Writer& to, StepLoad l) {
-    if (l.is_pressure()) throw std::logic_error("append_owned_items: a pressure load");
+  std::vector<StepLoad> forces;
+  for (const StepLoad& l : local.loads)
+    if (!l.is_pressure()) forces.push_back(l);
+  put_items(w, forces, [&](Writer& to, StepLoad l) {
     l.range = to_global(l.range, layout);
     put_load(to, l);
   });

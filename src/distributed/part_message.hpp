@@ -44,7 +44,8 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
 
 // A rank's own rigid bodies and loads, whole, with their ranges in global
 // storage indices (the owned particles are contiguous in both), appended to
-// `out`: what rank 0 keeps of them when it holds no particle.
+// `out`: what rank 0 keeps of them when it holds no particle. Pressure
+// loads are left out: every part holds each whole.
 void append_owned_items(const SolverState& local, const LocalLayout& layout,
                         std::vector<double>& out);
 // Reads them from in[at...] onto `head`'s rigid bodies and loads; `at` moves

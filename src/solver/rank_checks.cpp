@@ -56,7 +56,8 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   // Its loads' work and its rigid bodies' drivers' work, in their order,
   // then their fields.
   std::vector<double> work;
-  for (const StepLoad& load : part.local.loads) work.push_back(load_work(p, load));
+  for (const StepLoad& load : part.local.loads)
+    if (!load.is_pressure()) work.push_back(load_work(p, load));
   append_list(work, out);
   work.clear();
   for (const RigidBody& body : part.local.rigid_bodies) work.push_back(body.work);
@@ -81,6 +82,11 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
     probes.insert(probes.end(), {static_cast<double>(k), at[0], at[1], at[2]});
   }
   append_list(probes, out);
+  // The current positions of the pressure nodes it hosts (every part holds
+  // every node; each positions those whose host it owns).
+  std::vector<double> nodes;
+  append_hosted_node_positions(p, part.local.loads, nodes);
+  append_list(nodes, out);
   // Its own moving contact candidates' positions, in candidate order, and
   // the first step its contact pass found a pair too close.
   const ContactState& c = part.local.contact;
@@ -123,6 +129,8 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverStat
   for (std::size_t k = 0; k + 4 <= probes.size(); k += 4)
     figures_.readings.probes.at(static_cast<std::size_t>(probes[k])) = {
         probes[k + 1], probes[k + 2], probes[k + 3]};
+  const std::vector<double> nodes = read_list(in, at);
+  pressure_nodes_.insert(pressure_nodes_.end(), nodes.begin(), nodes.end());
   // Ranks own ascending ranges: their candidates in rank order are in
   // candidate order.
   const std::vector<double> candidates = read_list(in, at);
@@ -147,10 +155,23 @@ CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& 
     const auto r = static_cast<std::size_t>(d.owner_of(range.begin));
     return lists.at(r).at(next[r]++);
   };
+  // Every node of each pressure load from the rank that hosts it (rank 0's
+  // loads are every part's: the same running step).
+  std::vector<std::vector<double>> node_xyz;
+  for (const StepLoad& load : global.loads)
+    if (load.is_pressure()) node_xyz.emplace_back(3 * load.surface.nodes(), 0.0);
+  for (std::size_t k = 0; k + 5 <= pressure_nodes_.size(); k += 5) {
+    std::vector<double>& xyz = node_xyz.at(static_cast<std::size_t>(pressure_nodes_[k]));
+    const auto node = static_cast<std::size_t>(pressure_nodes_[k + 1]);
+    std::copy_n(pressure_nodes_.begin() + static_cast<long>(k + 2), 3,
+                xyz.begin() + static_cast<long>(3 * node));
+  }
   double work = 0.0;
+  std::size_t pressures = 0;
   for (const StepLoad& load : global.loads) {
-    if (load.is_pressure()) throw std::logic_error("a check over ranks with a pressure load");
-    f.readings.load_work.push_back(take(load_work_, load.range));
+    f.readings.load_work.push_back(load.is_pressure()
+                                       ? pressure_work_at(load, node_xyz.at(pressures++))
+                                       : take(load_work_, load.range));
     work += f.readings.load_work.back();
   }
   std::fill(next.begin(), next.end(), 0);

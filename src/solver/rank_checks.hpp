@@ -5,7 +5,8 @@
 // on its own particles and combined on rank 0 with the bits of the whole
 // state's, so that a check moves no rank's slice. Used where the check reads
 // nothing else of the particles but contact's candidates (rank 0 keeps a
-// copy of those: src/solver/contact_copy.hpp): no gas, no pressure load.
+// copy of those: src/solver/contact_copy.hpp) and a pressure's nodes (each
+// rank positions those it hosts): no gas.
 #include <cstddef>
 #include <vector>
 
@@ -33,8 +34,8 @@ struct CheckFigures {
 
 // A rank's share, appended to `out` (its owned particles, in global storage
 // indices; its own loads' and rigid bodies' work and fields in their order;
-// its part of the elastic bodies' extents, its probes and its moving
-// contact candidates).
+// its part of the elastic bodies' extents, its probes, the pressure nodes it
+// hosts and its moving contact candidates).
 void append_rank_check(const RankPart& part, std::vector<double>& out);
 
 // Every rank's share read in rank order, then the figures.
@@ -53,7 +54,8 @@ class RankChecks {
 
  private:
   std::vector<OrderedSumPart<kMotionSums>> motion_;
-  std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order
+  std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order (no pressure)
+  std::vector<double> pressure_nodes_;  // (pressure, node, x, y, z) from every rank
   std::size_t elastic_bodies_;
   CheckFigures figures_;  // the first-found and largest, the extents, the probes
 };

@@ -313,6 +313,15 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
     contact_copy_ = std::make_unique<ContactCopy>(
         copy_contact_candidates(mine, parts_->part.layout, head.contact));
   exchange(head, 0, {.head = true});
+  // Every part holds each pressure load whole, with the same running step:
+  // rank 0 keeps its own (its nodes' weights over its own part, which
+  // only the ranks' steps read), over the body's global range.
+  for (const StepLoad& l : mine.loads) {
+    if (!l.is_pressure()) continue;
+    StepLoad& kept = head.loads.emplace_back(l);
+    for (const LoadSpec& given : spec.loads)
+      if (given.name == l.name) kept.range = head.body_ranges[static_cast<std::size_t>(given.body)];
+  }
   put_loads_in_case_order(spec, head.loads);
   counts_.particles = cut.starts.back();
 }

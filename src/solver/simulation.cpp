@@ -41,10 +41,7 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
 }  // namespace
 
 bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy) {
-  // A pressure's checks read its nodes' current positions from rank 0's copy.
-  return copy == RankZeroCopy::whole || !part_set_up_covers(spec) ||
-         std::any_of(spec.loads.begin(), spec.loads.end(),
-                     [](const LoadSpec& l) { return l.type == LoadSpec::Type::pressure; });
+  return copy == RankZeroCopy::whole || !part_set_up_covers(spec);
 }
 
 Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)
@@ -261,9 +258,8 @@ void Simulation::restore_gas() {
 
 bool Simulation::checks_on_ranks() const {
   if (!stepper_->checks_on_ranks() || gas_) return false;
-  if (state_.contact.enabled() && !stepper_->contact_copy()) return false;
-  return std::none_of(state_.loads.begin(), state_.loads.end(),
-                      [](const StepLoad& l) { return l.is_pressure(); });
+  // With a whole copy, contact's figures read it.
+  return !state_.contact.enabled() || stepper_->contact_copy();
 }
 
 StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {

@@ -159,12 +159,13 @@ class Simulation {
   // The contact energy and the closest pair, into `d`.
   void add_contact_figures(Diagnostics& d);
   // Whether a check can read the ranks' shares instead of rank 0's copy:
-  // over ranks, with nothing else of the particles to read (contact, a gas,
-  // a pressure's nodes).
+  // over ranks, without a gas (the gas reads the particles) and, with
+  // contact, where rank 0 keeps a copy of the candidates.
   bool checks_on_ranks() const;
   // A check's figures from rank 0's copy of the whole state (brought back),
   // and the verdicts from figures, either way (`contact` checked between
-  // the integrity and the speed, as it needs rank 0's copy).
+  // the integrity and the speed, on rank 0's copy of the state or of the
+  // candidates).
   StabilityVerdict judge(const CheckFigures& f, Diagnostics* diagnostics_out);
   void restore_gas();  // as at the last keep_good
 

@@ -15,6 +15,8 @@
 #    does the rod in space (its frames' surface marks from each rank's
 #    bonds), resumed at 3 ranks;
 #  - a blast-wave load at 2 ranks, and resumed at 3 mid-wave, too;
+#  - a pressure load at 2 and 3 ranks, and resumed at 3, too, rank 0
+#    holding no copy and no slice moving;
 #  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
 #    during the shock's reflection, gives the serial bits;
 #  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
@@ -173,6 +175,33 @@ mpi 2 blast_half run "$CASE" "${SETS[@]}" "${BLAST[@]}" --set time.end=5e-5 --ou
 mpi 3 blast_resume resume "$TMP/blast_half" --set time.end=1e-4
 [[ $rc -eq 0 ]] && same "blast wave at 2 ranks, resumed at 3" "$TMP/blast_half" "$TMP/blast_serial" ||
   fail "blast wave resumed at 3 ranks: exit $rc"
+
+# A pressure load on the plate (every rank holds each node, positioning
+# those it hosts; a check's work from the nodes' positions the ranks send)
+# at 2 and 3 ranks and resumed at 3: rank 0 holds no copy, no slice moves.
+P_CASE=cases/shock_rod_pressure.toml
+P_SETS=(--set output.frame_interval=5e-5 --set output.checkpoint_interval=1e-4
+  --set output.history_interval=1e-5)
+"$BIN" run "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4 --out "$TMP/p_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the serial pressure run failed"
+for ranks in 2 3; do
+  mpi "$ranks" "pressure$ranks" run "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4 \
+    --out "$TMP/pressure$ranks"
+  [[ $rc -eq 0 ]] && same "pressure at $ranks ranks" "$TMP/pressure$ranks" "$TMP/p_serial" ||
+    fail "pressure at $ranks ranks: exit $rc"
+  copy_is "pressure at $ranks ranks" "$TMP/pressure$ranks" none
+  moves=$(/usr/bin/python3 -c '
+import json, sys
+print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
+    "$TMP/pressure$ranks/run.json")
+  [[ $moves == 0 ]] && ok "pressure at $ranks ranks: no slice moved" ||
+    fail "pressure at $ranks ranks: $moves slice moves"
+done
+mpi 2 p_half run "$P_CASE" "${P_SETS[@]}" --set time.end=1e-4 --out "$TMP/p_half"
+mpi 3 p_resume resume "$TMP/p_half" --set time.end=2e-4
+[[ $rc -eq 0 ]] && same "pressure at 2 ranks, resumed at 3" "$TMP/p_half" "$TMP/p_serial" ||
+  fail "pressure resumed at 3 ranks: exit $rc"
+copy_is "pressure at 2 ranks, resumed at 3" "$TMP/p_half" none
 
 # Half the run at 2 ranks, the rest at 1 and at 3 (each rank reading its own
 # rows of the checkpoint, rank 0 holding no copy).

@@ -1,10 +1,13 @@
 // A rank's part set up from the case alone (src/solver/part_setup.hpp) is the
 // part rank 0 cuts from the whole set-up state (local_part), bit for bit, as
 // the message it would travel in: every case in cases/ the set-up covers, in
-// the plane and in space, at 2, 3 and 5 ranks.
+// the plane and in space, at 2, 3 and 5 ranks. And what rank 0 keeps when it
+// holds no particle, from the ranks' parts: the bond table's facts, every
+// body and load, its copy of the contact candidates, a pressure's work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
@@ -23,6 +26,7 @@
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/setup.hpp"
+#include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
 
 namespace mpsolid {
@@ -315,6 +319,56 @@ TEST(PartSetUp, RankZerosCopyOfTheCandidatesIsTheWholeStatesContact) {
   expect_the_whole_states_candidates("cases/colliding_blocks.toml");
   expect_the_whole_states_candidates("cases/disk_impact.toml");
   expect_the_whole_states_candidates("cases/colliding_spheres.toml");
+}
+
+}  // namespace
+}  // namespace mpsolid
+
+namespace mpsolid {
+namespace {
+
+// A pressure's work over ranks (src/solver/rank_checks.cpp): the nodes each
+// rank's part hosts, positioned from its own particles and ghosts, give
+// every node once, and the work at those positions is the whole state's,
+// bit for bit, mid-run (the ring inflating, the rod's plate pushed).
+void expect_the_pressures_work_from_the_parts(const std::string& case_file, std::int64_t steps) {
+  Simulation sim(load_case(testing::source_path(case_file)));
+  sim.advance(steps);
+  const SolverState& global = sim.state();
+  ASSERT_TRUE(any_pressure(global.loads));
+  for (const int ranks : {2, 3, 5}) {
+    SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
+    const Decomposition d = decompose_state(global, ranks);
+    std::vector<double> nodes;
+    for (int r = 0; r < ranks; ++r) {
+      const LocalPart part = local_part(global, d, r);
+      append_hosted_node_positions(part.state.particles, part.state.loads, nodes);
+    }
+    std::size_t pressures = 0;
+    for (const StepLoad& load : global.loads) {
+      if (!load.is_pressure()) continue;
+      ASSERT_TRUE(load.active);
+      std::vector<double> xyz(3 * load.surface.nodes(), std::nan(""));
+      std::size_t given = 0;
+      for (std::size_t k = 0; k + 5 <= nodes.size(); k += 5) {
+        if (static_cast<std::size_t>(nodes[k]) != pressures) continue;
+        std::copy_n(nodes.begin() + static_cast<long>(k + 2), 3,
+                    xyz.begin() + 3 * static_cast<long>(nodes[k + 1]));
+        ++given;
+      }
+      EXPECT_EQ(given, load.surface.nodes()) << "every node once";
+      const double whole = load_work(global.particles, load);
+      EXPECT_NE(whole, 0.0);
+      EXPECT_EQ(pressure_work_at(load, xyz), whole);
+      ++pressures;
+    }
+  }
+}
+
+TEST(PressureOverRanks, TheWorkFromTheNodesThePartsHostIsTheWholeStates) {
+  expect_the_pressures_work_from_the_parts("cases/ring_pressure.toml", 300);
+  expect_the_pressures_work_from_the_parts("cases/shock_rod_pressure.toml", 300);
+  expect_the_pressures_work_from_the_parts("cases/shock_rod_3d_pressure.toml", 100);
 }
 
 }  // namespace
