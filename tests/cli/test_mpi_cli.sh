@@ -69,12 +69,32 @@ same() {  # same LABEL DIR [SERIAL]: DIR has the serial run's bits (SERIAL: $TMP
   fi
 }
 
+no_slice_moved() {  # no_slice_moved LABEL DIR: none came back to rank 0 (run.json)
+  local moves
+  moves=$(/usr/bin/python3 -c '
+import json, sys
+print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' "$2/run.json")
+  [[ $moves == 0 ]] && ok "$1: no slice moved" || fail "$1: $moves slice moves"
+}
+
 copy_is() {  # copy_is LABEL DIR WANT: what rank 0 held of the particles (run.json)
   local got
   got=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["rank_zero_copy"])' \
     "$2/run.json" 2>&1)
   [[ $got == "$3" ]] && ok "$1: rank 0 held $3 of the particles" ||
     fail "$1: run.json's rank_zero_copy is $got (want $3)"
+}
+
+# no_copy_at RANKS LABEL NAME SERIAL ARGS...: `run ARGS` at RANKS ranks into
+# $TMP/NAME has the serial run's bits, rank 0 holding no copy and no slice
+# moving.
+no_copy_at() {
+  local ranks=$1 label=$2 name=$3 serial=$4
+  shift 4
+  mpi "$ranks" "$name" run "$@" --out "$TMP/$name"
+  [[ $rc -eq 0 ]] && same "$label" "$TMP/$name" "$serial" || fail "$label: exit $rc"
+  copy_is "$label" "$TMP/$name" none
+  no_slice_moved "$label" "$TMP/$name"
 }
 
 "$BIN" run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/serial" --threads 1 \
@@ -185,17 +205,8 @@ P_SETS=(--set output.frame_interval=5e-5 --set output.checkpoint_interval=1e-4
 "$BIN" run "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4 --out "$TMP/p_serial" --threads 1 \
   >/dev/null 2>&1 </dev/null || fail "the serial pressure run failed"
 for ranks in 2 3; do
-  mpi "$ranks" "pressure$ranks" run "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4 \
-    --out "$TMP/pressure$ranks"
-  [[ $rc -eq 0 ]] && same "pressure at $ranks ranks" "$TMP/pressure$ranks" "$TMP/p_serial" ||
-    fail "pressure at $ranks ranks: exit $rc"
-  copy_is "pressure at $ranks ranks" "$TMP/pressure$ranks" none
-  moves=$(/usr/bin/python3 -c '
-import json, sys
-print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
-    "$TMP/pressure$ranks/run.json")
-  [[ $moves == 0 ]] && ok "pressure at $ranks ranks: no slice moved" ||
-    fail "pressure at $ranks ranks: $moves slice moves"
+  no_copy_at "$ranks" "pressure at $ranks ranks" "pressure$ranks" "$TMP/p_serial" "$P_CASE" \
+    "${P_SETS[@]}" --set time.end=2e-4
 done
 mpi 2 p_half run "$P_CASE" "${P_SETS[@]}" --set time.end=1e-4 --out "$TMP/p_half"
 mpi 3 p_resume resume "$TMP/p_half" --set time.end=2e-4
@@ -280,17 +291,8 @@ C_SETS=(--set l0=0.0005 --set output.frame_interval=3e-4 --set output.checkpoint
 "$BIN" run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 --out "$TMP/c_serial" --threads 1 \
   >/dev/null 2>&1 </dev/null || fail "the contact serial run failed"
 for ranks in 2 3; do
-  mpi "$ranks" "contact$ranks" run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 \
-    --out "$TMP/contact$ranks"
-  [[ $rc -eq 0 ]] && same "contact at $ranks ranks" "$TMP/contact$ranks" "$TMP/c_serial" ||
-    fail "contact at $ranks ranks: exit $rc"
-  copy_is "contact at $ranks ranks" "$TMP/contact$ranks" none
-  moves=$(/usr/bin/python3 -c '
-import json, sys
-print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
-    "$TMP/contact$ranks/run.json")
-  [[ $moves == 0 ]] && ok "contact at $ranks ranks: no slice moved" ||
-    fail "contact at $ranks ranks: $moves slice moves"
+  no_copy_at "$ranks" "contact at $ranks ranks" "contact$ranks" "$TMP/c_serial" "$C_CASE" \
+    "${C_SETS[@]}" --set time.end=2.4e-3
 done
 # time.dt = "auto" is estimated on every rank's part, contact's bound
 # included: the serial estimate's bits (run.json).
@@ -375,12 +377,7 @@ S3_SETS=(--set output.frame_interval=5e-5 --set output.history_interval=1e-5
   --threads 1 >/dev/null 2>&1 </dev/null || fail "the serial run in space failed"
 mpi 2 space2 run cases/shock_rod_3d.toml "${S3_SETS[@]}" --set time.end=5e-5 --out "$TMP/space2"
 [[ $rc -eq 0 ]] || fail "the rod in space at 2 ranks: exit $rc"
-moves=$(/usr/bin/python3 -c '
-import json, sys
-print(sum(x["slice_moves"] for x in json.load(open(sys.argv[1]))["per_rank"]))' \
-  "$TMP/space2/run.json")
-[[ $moves == 0 ]] && ok "the rod in space at 2 ranks: no slice moved" ||
-  fail "the rod in space at 2 ranks: $moves slice moves"
+no_slice_moved "the rod in space at 2 ranks" "$TMP/space2"
 mpi 3 space3 resume "$TMP/space2" --set time.end=1e-4
 [[ $rc -eq 0 ]] && same "the rod in space, 2 ranks resumed at 3" "$TMP/space2" "$TMP/s3_serial" ||
   fail "the rod in space, 2 ranks resumed at 3: exit $rc"
