@@ -377,9 +377,8 @@ void refuse_earlier_results(const RunOptions& options) {
 
 int run_case(const CaseSpec& spec, const RunOptions& options) {
   RunFacts facts = begin_segment(options, 0);
-  check_memory(
-      spec, facts.threads, available_memory_bytes(),
-      machine_share(options.followers && !rank_zero_needs_copy(spec, RankZeroCopy::as_needed)));
+  check_memory(spec, facts.threads, available_memory_bytes(),
+               machine_share(options.followers != nullptr));
   // An existing folder is locked and checked before the set-up (seconds to
   // minutes on a large case); a new one once it is made.
   std::optional<FolderLock> lock;
@@ -442,8 +441,7 @@ int resume_run(const std::vector<std::string>& overrides, const RunOptions& opti
   }
 
   RunFacts facts = begin_segment(options, checkpoint.step);
-  const bool by_rows = options.followers && !checkpoint.particle_offsets.empty() &&
-                       !rank_zero_needs_copy(spec, RankZeroCopy::as_needed);
+  const bool by_rows = options.followers && !checkpoint.particle_offsets.empty();
   check_memory(spec, facts.threads, available_memory_bytes(), machine_share(by_rows));
   if (!by_rows) checkpoint = read_checkpoint(path);  // restored whole on rank 0
   Simulation sim(spec, options.followers, by_rows ? RankZeroCopy::as_needed : RankZeroCopy::whole);

@@ -258,13 +258,6 @@ void pressure_forces(StepLoad& load) {
     }
 }
 
-void close_running_step(const ParticleStore& p, StepLoad& load) {
-  if (!load.active) return;
-  PressureSurface& s = load.surface;
-  load.work += running_pressure_work(p, s);
-  for (std::size_t k = 0; k < s.nodes(); ++k) start_node(s, k, node_now(p, s, k));
-}
-
 void append_hosted_node_positions(const ParticleStore& p, const std::vector<StepLoad>& loads,
                                   std::vector<double>& out) {
   std::size_t ordinal = 0;
@@ -289,6 +282,14 @@ double pressure_work_at(const StepLoad& load, const std::vector<double>& xyz) {
   for (std::size_t k = 0; k < s.nodes(); ++k)
     work += node_work(s, k, {xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]});
   return load.work + work;
+}
+
+void close_running_step_at(StepLoad& load, const std::vector<double>& xyz) {
+  if (!load.active) return;
+  load.work = pressure_work_at(load, xyz);
+  PressureSurface& s = load.surface;
+  for (std::size_t k = 0; k < s.nodes(); ++k)
+    start_node(s, k, {xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]});
 }
 
 bool any_pressure(const std::vector<StepLoad>& loads) {

@@ -123,10 +123,10 @@ void pressure_forces(StepLoad& load);
 
 // A pressure load whose node forces are about to be changed between steps
 // (a gas load's, by the gas): adds the running step's work so far to its
-// work and restarts the running step at the nodes' current positions (the
-// whole state: every node's particles at hand), so the work is the same
+// work and restarts the running step at every node's current position
+// `xyz` (x, y, z per node, z = 0 in the plane), so the work is the same
 // whichever way the new forces reach the particles.
-void close_running_step(const ParticleStore& p, StepLoad& load);
+void close_running_step_at(StepLoad& load, const std::vector<double>& xyz);
 
 // The current positions of the nodes this part hosts of each active
 // pressure load of `loads`, appended as (the load's place among the

@@ -20,14 +20,14 @@ Decomposition decompose_state(const SolverState& global, int ranks,
   return cost ? decompose_costs(*cost, ranks, whole) : decompose(global.bonds, ranks, whole);
 }
 
-std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vector<double>& mine,
-                                          HaloCost& cost) {
+std::vector<double> gather_shared_values(const RankGroup& world, const std::vector<double>& mine,
+                                         HaloCost& cost, const char* what) {
   CommunicationTime t(cost);
   // Each rank's values after their count, so that each message is tallied.
   std::vector<double> framed{static_cast<double>(mine.size())};
   framed.insert(framed.end(), mine.begin(), mine.end());
   const std::vector<double> all = world.all_gather(framed);
-  HaloTally& tally = cost.tally("pressure nodes");
+  HaloTally& tally = cost.tally(what);
   std::vector<double> values;
   std::size_t at = 0;
   for (int r = 0; r < world.size(); ++r) {

@@ -78,9 +78,9 @@ class PassTime {
 };
 
 // Every rank's `mine` concatenated in rank order (RankGroup::all_gather),
-// what came from the other ranks tallied as the "pressure nodes" halo.
-std::vector<double> gather_pressure_nodes(const RankGroup& world, const std::vector<double>& mine,
-                                          HaloCost& cost);
+// what came from the other ranks tallied as the halo `what`.
+std::vector<double> gather_shared_values(const RankGroup& world, const std::vector<double>& mine,
+                                         HaloCost& cost, const char* what);
 
 // The step on a rank's part: its owned particles, its ghosts' halos, contact
 // over the ranks, each pass of a step timed without its halos (the fields
@@ -91,7 +91,7 @@ class OverRanks {
   OverRanks(RankPart& part, const RankGroup& world, Timing timing = Timing::on)
       : halo_{part, world},
         gather_([&world, &part](const std::vector<double>& mine) {
-          return gather_pressure_nodes(world, mine, part.halo_cost);
+          return gather_shared_values(world, mine, part.halo_cost, "pressure nodes");
         }),
         timed_(timing == Timing::on) {}
   Range own(const ParticleStore&) const { return halo_.part.layout.owned; }

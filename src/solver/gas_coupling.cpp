@@ -14,19 +14,6 @@
 namespace mpsolid {
 
 namespace {
-Surface body_surface(const CaseSpec& spec, int body) {
-  const Shape& shape = spec.bodies[static_cast<std::size_t>(body)].shape;
-  return build_surface(shape, fill_shape(shape, spec.l0), spec.l0);
-}
-
-PressureSurface whole_surface(const CaseSpec& spec, const SolverState& s, int body) {
-  const Surface surface = body_surface(spec, body);
-  std::vector<std::uint32_t> all(surface.nodes());
-  for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
-  return make_pressure_surface(surface, all, s.body_ranges[static_cast<std::size_t>(body)].begin,
-                               0.0, spec.depth);
-}
-
 GasPrimitive<2> primitive_of(const GasStateSpec& s) {
   return {s.density, {s.velocity[0], s.velocity[1]}, s.pressure};
 }
@@ -38,20 +25,6 @@ GasPrimitive<2> shocked(const GasSpec& g) {
   return {behind.behind.rho, {g.direction * behind.behind.u, 0.0}, behind.behind.p};
 }
 }  // namespace
-
-void add_gas_loads(const CaseSpec& spec, SolverState& s) {
-  for (const int b : spec.gas.bodies) {
-    const BodySpec& body = spec.bodies[static_cast<std::size_t>(b)];
-    if (body.kind == Kind::wall) continue;  // walls never move: no load
-    StepLoad load;
-    load.name = kGasLoadPrefix + body.name;
-    load.range = s.body_ranges[static_cast<std::size_t>(b)];
-    load.surface = whole_surface(spec, s, b);
-    load.surface.given_fx.assign(load.surface.nodes(), 0.0);
-    load.surface.given_fy.assign(load.surface.nodes(), 0.0);
-    s.loads.push_back(std::move(load));
-  }
-}
 
 namespace {
 GasSolver<2> make_gas(const GasSpec& g) {
@@ -93,65 +66,59 @@ GasSolver<2> make_gas(const GasSpec& g) {
 }
 }  // namespace
 
-GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& state)
-    : spec_(spec.gas), depth_(spec.depth), gas_(make_gas(spec.gas)) {
-  const GasSpec& g = spec_;
-  // The outlines, in the order of the case's bodies; each moving body's
-  // from its gas load.
+GasCoupling::GasCoupling(const CaseSpec& spec, const SolverState& head)
+    : spec_(spec.gas),
+      depth_(spec.depth),
+      gas_(make_gas(spec.gas)),
+      outlines_(gas_outlines(spec, head.body_ranges)) {
+  // Each outline's gas load (a moving body's) and driven rigid body.
   std::size_t pieces = 0;
-  for (const int b : g.bodies) {
+  for (std::size_t k = 0; k < outlines_.size(); ++k) {
+    const std::string& body = spec.bodies[static_cast<std::size_t>(spec_.bodies[k])].name;
     Outline o;
-    const std::string name = kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name;
-    const auto load = std::find_if(state.loads.begin(), state.loads.end(),
-                                   [&](const StepLoad& l) { return l.name == name; });
-    if (load != state.loads.end()) {
-      o.load = static_cast<int>(load - state.loads.begin());
-      o.surface = load->surface;
-    } else {
-      o.surface = whole_surface(spec, state, b);
-    }
-    const auto rigid =
-        std::find_if(state.rigid_bodies.begin(), state.rigid_bodies.end(), [&](const RigidBody& r) {
-          return r.name == spec.bodies[static_cast<std::size_t>(b)].name;
-        });
-    if (rigid != state.rigid_bodies.end() && rigid->motion.on)
-      o.driven = static_cast<int>(rigid - state.rigid_bodies.begin());
+    const auto load = std::find_if(head.loads.begin(), head.loads.end(), [&](const StepLoad& l) {
+      return l.name == kGasLoadPrefix + body;
+    });
+    if (load != head.loads.end()) o.load = static_cast<int>(load - head.loads.begin());
+    const auto rigid = std::find_if(head.rigid_bodies.begin(), head.rigid_bodies.end(),
+                                    [&](const RigidBody& r) { return r.name == body; });
+    if (rigid != head.rigid_bodies.end() && rigid->motion.on)
+      o.driven = static_cast<int>(rigid - head.rigid_bodies.begin());
     o.first_piece = pieces;
-    pieces += o.surface.from.size();
-    outlines_.push_back(std::move(o));
+    pieces += outlines_[k].from.size();
+    coupled_.push_back(o);
   }
-  last_walls_ = walls(state);
+}
+
+void GasCoupling::place_walls(const OutlineMotion& now) {
+  last_walls_ = walls(now);
   gas_.set_walls(last_walls_);
 }
 
-std::vector<GasWallSegment> GasCoupling::walls(const SolverState& state) const {
-  const ParticleStore& p = state.particles;
+std::vector<GasWallSegment> GasCoupling::walls(const OutlineMotion& now) const {
   std::vector<GasWallSegment> out;
-  for (const Outline& o : outlines_) {
-    const PressureSurface& s = o.surface;
-    std::vector<Point2> x(s.nodes()), v(s.nodes());
-    for (std::size_t k = 0; k < s.nodes(); ++k) {
-      x[k] = affine_point(s.offsets, s.particle, s.weight, k, p.x.data(), p.y.data(), 0);
-      v[k] = affine_point(s.offsets, s.particle, s.weight, k, p.vx.data(), p.vy.data(), 0);
-    }
+  for (std::size_t k = 0; k < outlines_.size(); ++k) {
+    const PressureSurface& s = outlines_[k];
+    const std::vector<double>& m = now.at(k);  // x, y, vx, vy per node
     for (std::size_t g = 0; g < s.from.size(); ++g) {
-      const Point2 &a = x[s.from[g]], &b = x[s.to[g]], &va = v[s.from[g]], &vb = v[s.to[g]];
-      out.push_back({{a.x, a.y}, {b.x, b.y}, {va.x, va.y}, {vb.x, vb.y}});
+      const double *a = &m.at(4 * s.from[g]), *b = &m.at(4 * s.to[g]);
+      out.push_back({{a[0], a[1]}, {b[0], b[1]}, {a[2], a[3]}, {b[2], b[3]}});
     }
   }
   return out;
 }
 
-double GasCoupling::steps_within_half_a_cell(const SolverState& state, double dt, double fastest,
+double GasCoupling::steps_within_half_a_cell(const SolverState& head, double dt, double fastest,
                                              double limit) const {
   // A driven body's speed is known ahead: a step or a ramp in its motion
   // must not carry its wall further than the gas can follow in one window.
   std::vector<std::pair<const RigidBody*, double>> driven;  // body, reach from its centroid
-  for (const Outline& o : outlines_) {
+  for (std::size_t k = 0; k < coupled_.size(); ++k) {
+    const Outline& o = coupled_[k];
     if (o.driven < 0) continue;
-    const RigidBody& r = state.rigid_bodies[static_cast<std::size_t>(o.driven)];
+    const RigidBody& r = head.rigid_bodies[static_cast<std::size_t>(o.driven)];
     double reach = 0;  // of its outline's nodes, for its spin
-    for (std::size_t g = 0; g < o.surface.from.size(); ++g)
+    for (std::size_t g = 0; g < outlines_[k].from.size(); ++g)
       for (const auto& node : {last_walls_[o.first_piece + g].a, last_walls_[o.first_piece + g].b})
         reach = std::max(reach, std::hypot(node[0] - r.xg, node[1] - r.yg));
     driven.emplace_back(&r, reach);
@@ -159,7 +126,7 @@ double GasCoupling::steps_within_half_a_cell(const SolverState& state, double dt
   if (driven.empty()) return limit;
   double travel = 0;
   for (double k = 0; k < limit; ++k) {
-    const double t = (static_cast<double>(state.step) + k) * dt;
+    const double t = (static_cast<double>(head.step) + k) * dt;
     double speed = fastest;
     for (const auto& [r, reach] : driven)
       speed = std::max(speed, std::abs(r->motion.factor(t, dt)) *
@@ -171,10 +138,9 @@ double GasCoupling::steps_within_half_a_cell(const SolverState& state, double dt
   return limit;
 }
 
-void GasCoupling::exchange(SolverState& state, double dt) {
-  last_walls_ = walls(state);
+GasNodeForces GasCoupling::window(const SolverState& head, const OutlineMotion& now, double dt) {
+  place_walls(now);
   const std::vector<GasWallSegment>& segments = last_walls_;
-  gas_.set_walls(segments);
   // The window: as many solid steps as the gas's CFL step holds, and no
   // more than a wall crosses half a cell in; or one solid step in as many
   // gas steps as it needs.
@@ -184,7 +150,7 @@ void GasCoupling::exchange(SolverState& state, double dt) {
   const double gas_dt = gas_.stable_dt(spec_.cfl);
   double fit = std::floor(gas_dt / dt);
   if (fastest > 0) fit = std::min(fit, std::floor(0.5 * spec_.cell / (fastest * dt)));
-  if (fit > 1) fit = steps_within_half_a_cell(state, dt, fastest, fit);
+  if (fit > 1) fit = steps_within_half_a_cell(head, dt, fastest, fit);
   const std::int64_t window = fit >= 1 ? static_cast<std::int64_t>(std::min(fit, 1e9)) : 1;
   const int substeps = fit >= 1 ? 1 : static_cast<int>(std::ceil(dt / gas_dt));
   const double step = static_cast<double>(window) * dt / substeps;
@@ -196,24 +162,26 @@ void GasCoupling::exchange(SolverState& state, double dt) {
   }
   gas_steps_ += substeps;
   gas_time_ += static_cast<double>(window) * dt;
-  // Each moving body's node forces, N over the depth.
-  for (const Outline& o : outlines_) {
-    if (o.load < 0) continue;
-    StepLoad& load = state.loads[static_cast<std::size_t>(o.load)];
-    close_running_step(state.particles, load);
-    PressureSurface& s = load.surface;
-    std::fill(s.given_fx.begin(), s.given_fx.end(), 0.0);
-    std::fill(s.given_fy.begin(), s.given_fy.end(), 0.0);
+  // Each moving body's node forces, N over the depth: its x components,
+  // then its y components.
+  GasNodeForces out;
+  for (std::size_t k = 0; k < coupled_.size(); ++k) {
+    if (coupled_[k].load < 0) continue;
+    const PressureSurface& s = outlines_[k];
+    const std::size_t first = out.size(), n = s.nodes();
+    out.resize(first + 2 * n, 0.0);
+    double* fx = out.data() + first;
+    double* fy = fx + n;
     for (std::size_t g = 0; g < s.from.size(); ++g) {
-      const std::array<double, 4>& f = forces[o.first_piece + g];
-      s.given_fx[s.from[g]] += depth_ * f[0];
-      s.given_fy[s.from[g]] += depth_ * f[1];
-      s.given_fx[s.to[g]] += depth_ * f[2];
-      s.given_fy[s.to[g]] += depth_ * f[3];
+      const std::array<double, 4>& f = forces[coupled_[k].first_piece + g];
+      fx[s.from[g]] += depth_ * f[0];
+      fy[s.from[g]] += depth_ * f[1];
+      fx[s.to[g]] += depth_ * f[2];
+      fy[s.to[g]] += depth_ * f[3];
     }
-    if (load.active) pressure_forces(load);
   }
-  next_ = state.step + window;
+  next_ = head.step + window;
+  return out;
 }
 
 GasCoupling::Saved GasCoupling::saved() const {
@@ -301,7 +269,7 @@ GasFrame GasCoupling::frame() const {
   return f;
 }
 
-GasFigures GasCoupling::figures(const SolverState& state) const {
+GasFigures GasCoupling::figures(const std::function<double(std::size_t)>& work_of) const {
   GasFigures f;
   f.gas_steps = gas_steps_;
   f.gas_time = gas_time_;
@@ -314,9 +282,8 @@ GasFigures GasCoupling::figures(const SolverState& state) const {
   f.solid_work = depth_ * x.solid_work;
   f.lost_energy = depth_ * x.lost.energy;
   double load_work_total = 0;
-  for (const Outline& o : outlines_)
-    if (o.load >= 0)
-      load_work_total += load_work(state.particles, state.loads[static_cast<std::size_t>(o.load)]);
+  for (const Outline& o : coupled_)
+    if (o.load >= 0) load_work_total += work_of(static_cast<std::size_t>(o.load));
   f.coupling_error = load_work_total - f.wall_work - f.solid_work;
   const GasGrid<2>& grid = gas_.grid();
   for (const GasSpec::Probe& p : spec_.probes) {

@@ -11,6 +11,7 @@
 // gas stage; the windows' error is the work of the held forces against the
 // nodes' actual motion, kept in the balance.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,30 +21,33 @@
 #include "src/core/gas_frame.hpp"
 #include "src/core/solver_state.hpp"
 #include "src/gas/gas_solver.hpp"
+#include "src/solver/gas_outlines.hpp"
 
 namespace mpsolid {
 
-// Each body the gas pushes gets a load named kGasLoadPrefix + its name: a
-// pressure load over its whole surface whose node forces the gas gives.
-inline constexpr const char* kGasLoadPrefix = "gas.";
-
-// The gas loads of `spec`'s coupled moving bodies, appended to s.loads
-// (at set-up, after the case's own loads).
-void add_gas_loads(const CaseSpec& spec, SolverState& s);
-
 class GasCoupling {
  public:
-  // The gas's grid, initial state and walls from `spec` and the bodies in
-  // `state` (whose gas loads add_gas_loads made).
-  GasCoupling(const CaseSpec& spec, const SolverState& state);
+  // The gas's grid and initial state from `spec`, its outlines over the
+  // whole state's storage indices (`head`: its bodies' ranges, gas loads
+  // and rigid bodies, with or without the particles); its walls wait for
+  // place_walls.
+  GasCoupling(const CaseSpec& spec, const SolverState& head);
+
+  // The bodies' outlines (in the case's [gas] order) whose nodes' motion
+  // the gas reads (outline_motion, or the ranks' hosted nodes).
+  const std::vector<PressureSurface>& outlines() const { return outlines_; }
+  // The outlines' nodes `now` as the gas's walls (at set-up).
+  void place_walls(const OutlineMotion& now);
 
   std::int64_t steps() const { return gas_steps_; }
   // The step at which the next window starts (the gas is due).
   std::int64_t next_exchange() const { return next_; }
-  // At state.step == next_exchange(): the walls from the state, the gas
-  // stepped over the window, the gas loads' node forces set. Throws
-  // GasFailure (the gas as it was) when the gas went unphysical.
-  void exchange(SolverState& state, double dt);
+  // At head.step == next_exchange(): the walls from the outlines' nodes
+  // `now`, the gas stepped over the window; returns the node forces the gas
+  // loads hold over it (give_gas_forces). `head`'s rigid bodies must be
+  // current (a driven body's motion bounds the window). Throws GasFailure
+  // (the gas as it was) when the gas went unphysical.
+  GasNodeForces window(const SolverState& head, const OutlineMotion& now, double dt);
 
   // Everything a resumed run needs to go on with the same bits, as named
   // arrays (for checkpoint.h5), and put back from them (after the state's
@@ -52,34 +56,34 @@ class GasCoupling {
   Saved saved() const;
   void restore(const Saved& saved);
 
-  // The figures, with the coupling error from the gas loads' work in `state`.
-  GasFigures figures(const SolverState& state) const;
+  // The figures, with the coupling error from the gas loads' work
+  // (`work_of(l)`: the work of head.loads[l] so far).
+  GasFigures figures(const std::function<double(std::size_t)>& work_of) const;
   const GasSolver<2>& gas() const { return gas_; }
   // The gas's fields now, for a frame.
   GasFrame frame() const;
 
  private:
-  // A coupled body's surface as the gas sees it: its nodes' weights and its
-  // segments, its gas load in SolverState::loads (-1 for a wall), and its
-  // first segment among the gas's walls.
+  // A coupled body as the gas sees it: its gas load in SolverState::loads
+  // (-1 for a wall), and its outline's first segment among the gas's walls.
   struct Outline {
-    PressureSurface surface;
     int load = -1;
     int driven = -1;  // its rigid body in SolverState::rigid_bodies when driven
     std::size_t first_piece = 0;
   };
-  std::vector<GasWallSegment> walls(const SolverState& state) const;
+  std::vector<GasWallSegment> walls(const OutlineMotion& now) const;
   // How many of the next `limit` solid steps keep every wall within half a
   // cell of where the gas last saw it: the free walls at their present
   // speed `fastest`, the driven ones at their motion's speed step by step.
-  double steps_within_half_a_cell(const SolverState& state, double dt, double fastest,
+  double steps_within_half_a_cell(const SolverState& head, double dt, double fastest,
                                   double limit) const;
 
   GasSpec spec_;
   double depth_;
   GasSolver<2> gas_;
   std::vector<GasWallSegment> last_walls_;  // as the gas has them
-  std::vector<Outline> outlines_;
+  std::vector<PressureSurface> outlines_;
+  std::vector<Outline> coupled_;  // each outline's load and rigid body
   std::int64_t next_ = 0;
   std::int64_t gas_steps_ = 0;
   double gas_time_ = 0;

@@ -9,14 +9,11 @@
 #include "neighbor/bond_search.hpp"
 #include "src/core/ordered_sum.hpp"
 #include "src/solver/contact_setup.hpp"
+#include "src/solver/gas_outlines.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/setup.hpp"
 
 namespace mpsolid {
-
-bool part_set_up_covers(const CaseSpec& spec) {
-  return !spec.gas.enabled;
-}
 
 namespace {
 bool overlaps(Range a, Range b) {
@@ -230,7 +227,6 @@ CandidateList every_candidate(const CaseSpec& spec, const Window& w, Range mine,
 
 LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
                       const RankGroup* world) {
-  if (!part_set_up_covers(spec)) throw std::logic_error("set_up_part: a case with a gas");
   if (spec.contact.enabled && world == nullptr)
     throw std::logic_error("set_up_part: contact needs the ranks to share their candidates");
   const BodyLayout layout = body_layout(spec);
@@ -266,28 +262,36 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none && !s.body_ranges[b].empty())
       s.holds.push_back(body_hold(spec.bodies[b], s.body_ranges[b]));
+  // Every part holds every node of a pressure (local_solver_state): the
+  // whole body's surface, over the sites the window holds.
+  const auto over_window = [&](const PressureSurface& whole) {
+    return local_pressure_surface(
+        whole,
+        [&](std::uint32_t g) {
+          const std::size_t w = window.index(g);
+          return w < global_of.size() && global_of[w] == g ? static_cast<std::uint32_t>(w)
+                                                           : PressureSurface::kElsewhere;
+        },
+        [](std::uint32_t) { return false; });
+  };
   // The loads of bodies this rank owns (their first steps wait for dt:
-  // schedule_loads).
+  // schedule_loads), then the gas's (set_up's order).
   for (const LoadSpec& l : spec.loads) {
     const auto b = static_cast<std::size_t>(l.body);
     if (l.type == LoadSpec::Type::pressure) {
-      // Every part holds every node of a pressure (local_solver_state):
-      // the whole body's surface, over the sites the window holds.
       StepLoad load = body_load(l, s.body_ranges[b], p);
-      load.surface = local_pressure_surface(
-          case_pressure_surface(spec, l, layout.range[b].begin),
-          [&](std::uint32_t g) {
-            const std::size_t w = window.index(g);
-            return w < global_of.size() && global_of[w] == g ? static_cast<std::uint32_t>(w)
-                                                             : PressureSurface::kElsewhere;
-          },
-          [](std::uint32_t) { return false; });
+      load.surface = over_window(case_pressure_surface(spec, l, layout.range[b].begin));
       s.loads.push_back(std::move(load));
       continue;
     }
     if (!overlaps(layout.range[b], mine)) continue;
     if (!inside(layout.range[b], mine)) throw split("the body of load", l.name);
     s.loads.push_back(body_load(l, s.body_ranges[b], p));
+  }
+  for (StepLoad& load : gas_loads(spec, layout.range)) {
+    load.surface = over_window(load.surface);
+    load.range = window.range(load.range);
+    s.loads.push_back(std::move(load));
   }
   const std::vector<std::array<double, 3>> centres = centroids(spec, layout, s.body_ranges);
   const bool with_rotation = model_info(spec.model).uses_rotation;

@@ -14,10 +14,6 @@
 
 namespace mpsolid {
 
-// Whether set_up_part covers the case: no gas (its bodies' outlines come
-// from the whole state).
-bool part_set_up_covers(const CaseSpec& spec);
-
 // The case's cut over `ranks` from its particle count alone (no rank holds
 // the bond table to weigh them by), rigid bodies and bodies under a force
 // kept whole, as decompose_state keeps them.

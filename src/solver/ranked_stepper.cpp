@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "src/core/float_mode.hpp"
 #include "src/core/process_memory.hpp"
@@ -12,6 +13,7 @@
 #include "src/solver/case_loader.hpp"
 #include "src/solver/contact_copy.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/gas_outlines.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/rank_rows.hpp"
 #include "src/solver/setup.hpp"
@@ -36,6 +38,12 @@ struct RankStepping {
   Decomposition decomposition;          // rank 0: who owns what
   std::int64_t rebuilds_reported = 0;   // this rank's contact list rebuilds
   std::vector<double> good;             // the last good slice (step first), as sent
+  // With a gas: its outlines as this part holds them, their nodes' motion
+  // at the last gas window's start (every rank's hosted nodes), and the
+  // node forces rank 0 gives the gas loads then.
+  std::vector<PressureSurface> gas_outlines;
+  OutlineMotion gas_motion;
+  GasNodeForces gas_forces;
 };
 
 namespace {
@@ -99,6 +107,8 @@ std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) 
   parts->limits = {spec.stability.min_jacobian};
   parts->part = make_rank_part(spec, std::move(local));
   parts->rebuilds_reported = parts->part.local.contact.rebuilds;
+  if (spec.gas.enabled)
+    parts->gas_outlines = part_gas_outlines(spec, parts->part.body_ranges, parts->part.layout);
   return parts;
 }
 
@@ -136,7 +146,14 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
   }
   if (how.estimate) parts.estimate = estimate_part_stable_step(parts.spec, p, world);
   if (how.restore_good) take_slice(p, parts.good);
+  if (how.gas_forces) {
+    // Rank 0's forces (the others send nothing), the running step closed
+    // at the nodes every rank shared.
+    parts.gas_forces = world.all_gather(world.rank() == 0 ? parts.gas_forces : GasNodeForces{});
+    give_gas_forces(parts.spec, p.local.loads, parts.gas_motion, parts.gas_forces);
+  }
   if (steps > 0) advance_rank_part(p, world, parts.spec.dt, steps);
+  if (how.gas_motion) parts.gas_motion = shared_outline_motion(p, parts.gas_outlines, world);
   if (how.keep_good) {
     parts.good.assign(1, static_cast<double>(p.local.step));
     StateSlice::append(p.local, p.layout.owned, parts.good);
@@ -203,23 +220,24 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
 
 // A command is the steps and the exchange's flags in one number (-1: the
 // end).
-constexpr std::int64_t kExchangeFlags = 8192;
+constexpr std::int64_t kExchangeFlags = 32768;
 std::int64_t command_of(std::int64_t steps, Exchange how) {
   return kExchangeFlags * steps + (how.send_slices ? 1 : 0) + (how.bring_back ? 2 : 0) +
          (how.fields ? 4 : 0) + (how.check ? 8 : 0) + (how.keep_good ? 16 : 0) +
          (how.restore_good ? 32 : 0) + (how.write_rows ? 64 : 0) + (how.report ? 128 : 0) +
          (how.estimate ? 256 : 0) + (how.time_step ? 512 : 0) + (how.head ? 1024 : 0) +
-         (how.describe ? 2048 : 0) + (how.send_items ? 4096 : 0);
+         (how.describe ? 2048 : 0) + (how.send_items ? 4096 : 0) + (how.gas_forces ? 8192 : 0) +
+         (how.gas_motion ? 16384 : 0);
 }
 std::int64_t steps_of(std::int64_t command) {
   return command / kExchangeFlags;
 }
 Exchange exchange_of(std::int64_t command) {
   const std::int64_t flags = command % kExchangeFlags;
-  return {(flags & 1) != 0,   (flags & 2) != 0,   (flags & 4) != 0,    (flags & 8) != 0,
-          (flags & 16) != 0,  (flags & 32) != 0,  (flags & 64) != 0,   (flags & 128) != 0,
-          (flags & 256) != 0, (flags & 512) != 0, (flags & 1024) != 0, (flags & 2048) != 0,
-          (flags & 4096) != 0};
+  return {(flags & 1) != 0,    (flags & 2) != 0,    (flags & 4) != 0,    (flags & 8) != 0,
+          (flags & 16) != 0,   (flags & 32) != 0,   (flags & 64) != 0,   (flags & 128) != 0,
+          (flags & 256) != 0,  (flags & 512) != 0,  (flags & 1024) != 0, (flags & 2048) != 0,
+          (flags & 4096) != 0, (flags & 8192) != 0, (flags & 16384) != 0};
 }
 }  // namespace
 
@@ -256,13 +274,13 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
-  // A case the set-up by part covers without the ranks' help (contact's
-  // candidates are shared by the ranks as they set up): each follower sets
-  // its own part up from the case and the cut, which is all rank 0 sends.
-  // Otherwise each follower's part, built and sent one at a time (rank 0
-  // never holds two); an empty message tells a follower the case was
-  // refused.
-  if (part_set_up_covers(spec) && !spec.contact.enabled) {
+  // Without contact (whose candidates the ranks share as they set up,
+  // which rank 0's part cut from its copy would not join), each follower
+  // sets its own part up from the case and the cut, which is all rank 0
+  // sends. Otherwise each follower's part, built and sent one at a time
+  // (rank 0 never holds two); an empty message tells a follower the case
+  // was refused.
+  if (!spec.contact.enabled) {
     for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(decomposition));
   } else {
     for (int r = 1; r < world.size(); ++r) {
@@ -287,8 +305,6 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
 RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head)
     : followers_(followers) {
   const Communicator& world = followers.world();
-  if (rank_zero_needs_copy(spec, RankZeroCopy::as_needed))
-    throw std::logic_error("RankedStepper: no whole copy for a case whose checks read one");
   followers.send_case(spec.resolved_toml);
   const Decomposition cut = decompose_case(spec, world.size());
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
@@ -313,14 +329,18 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
     contact_copy_ = std::make_unique<ContactCopy>(
         copy_contact_candidates(mine, parts_->part.layout, head.contact));
   exchange(head, 0, {.head = true});
-  // Every part holds each pressure load whole, with the same running step:
-  // rank 0 keeps its own (its nodes' weights over its own part, which
-  // only the ranks' steps read), over the body's global range.
+  // Every part holds each pressure load (a gas load too) whole, with the
+  // same running step: rank 0 keeps its own (its nodes' weights over its
+  // own part, which only the ranks' steps read), over the body's global
+  // range.
+  const std::vector<StepLoad> gas = gas_loads(spec, head.body_ranges);
   for (const StepLoad& l : mine.loads) {
     if (!l.is_pressure()) continue;
     StepLoad& kept = head.loads.emplace_back(l);
     for (const LoadSpec& given : spec.loads)
       if (given.name == l.name) kept.range = head.body_ranges[static_cast<std::size_t>(given.body)];
+    for (const StepLoad& g : gas)
+      if (g.name == l.name) kept.range = g.range;
   }
   put_loads_in_case_order(spec, head.loads);
   counts_.particles = cut.starts.back();
@@ -350,6 +370,22 @@ void RankedStepper::set_time_step(const CaseSpec& spec) {
   parts_->spec = spec;
   SolverState none;  // no slice moves
   exchange(none, 0, {.time_step = true});
+}
+
+OutlineMotion RankedStepper::gas_outline_motion(SolverState& global,
+                                                const std::vector<PressureSurface>& outlines) {
+  if (holds_particles()) return Stepper::gas_outline_motion(global, outlines);
+  exchange(global, 0, {.bring_back = true, .gas_motion = true});
+  ranks_ahead_ = false;
+  return parts_->gas_motion;
+}
+
+void RankedStepper::give_gas_forces(SolverState& global, const CaseSpec& spec,
+                                    const OutlineMotion& motion, const GasNodeForces& forces) {
+  if (holds_particles()) return Stepper::give_gas_forces(global, spec, motion, forces);
+  mpsolid::give_gas_forces(spec, global.loads, motion, forces);
+  parts_->gas_forces = forces;
+  gas_forces_due_ = true;
 }
 
 void RankedStepper::advance(SolverState& global, std::int64_t steps, PhaseTimers&) {
@@ -418,6 +454,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   const Communicator& world = followers_.world();
   const Decomposition& d = parts_->decomposition;
   RankPart& p = parts_->part;
+  how.gas_forces = std::exchange(gas_forces_due_, false);
   followers_.send_command(steps, how);
   if (how.write_rows) {
     std::string text = encode_placement(parts_->placement);

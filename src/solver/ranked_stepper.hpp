@@ -2,18 +2,20 @@
 // A run over several MPI ranks (docs/mpi.md). Rank 0 runs the command line
 // as always (the case, the set-up, the run loop, every check and output);
 // the other ranks follow it and hold only their part. Rank 0 sends each
-// follower the case and the cut (or, for a case with a gas, or with
-// contact where rank 0 keeps a copy, its part) once; then every rank steps
-// its own particles (the decomposed step) in batches that rank 0 commands.
-// Where the case allows, rank 0 keeps no copy of the particles, only the
-// bodies, loads and probes (RankZeroCopy, src/solver/simulation.hpp; with
-// contact, a copy of the candidates), and every read of
-// the particles comes from the ranks: checks and history rows from their
+// follower the case and the cut (or, with contact where rank 0 keeps a
+// copy, its part) once; then every rank steps its own particles (the
+// decomposed step) in batches that rank 0 commands. Rank 0 keeps no copy
+// of the particles, only the bodies, loads and probes (with contact, a
+// copy of the candidates; with a gas, the gas), and every read of the
+// particles comes from the ranks: checks and history rows from their
 // shares, frames and checkpoints written by every rank in place
-// (src/solver/rank_rows.hpp), a blow-up's particle from its owner.
-// Otherwise rank 0 keeps a whole copy, whose slices come back only when
-// its checks or outputs read the state and go out again only when it
-// changed it. Either way: the same bits at any rank count.
+// (src/solver/rank_rows.hpp), a gas window's outlines from the nodes each
+// hosts (src/solver/gas_outlines.hpp), a blow-up's particle from its
+// owner. A resume that restores a checkpoint whole (RankZeroCopy,
+// src/solver/simulation.hpp) keeps a whole copy on rank 0 instead, whose
+// slices come back only when its checks or outputs read the state and go
+// out again only when it changed it. Either way: the same bits at any rank
+// count.
 //
 // Every model and contact are decomposed, each rigid or loaded body owned
 // by one rank. The command line makes rank 0's Followers; a Simulation
@@ -51,6 +53,8 @@ struct Exchange {
   bool head = false;          // each rank's bodies, loads and bond facts (no whole copy)
   bool describe = false;      // the owner of a particle rank 0 names describes it
   bool send_items = false;    // before the steps: rank 0's bodies and loads changed (no copy)
+  bool gas_forces = false;    // before the steps: the gas's node forces to every rank's gas loads
+  bool gas_motion = false;    // after them: the gas's outlines' nodes shared by every rank
   // Whether each rank sends rank 0 a message after the steps.
   bool answered() const { return bring_back || fields || write_rows || report || head || describe; }
 };
@@ -99,8 +103,8 @@ class RankedStepper final : public Stepper {
   // the rank that owns it), the damping. Every read of the state then comes
   // from the ranks (checks, history rows, frames, checkpoints, a blow-up's
   // particle); counts() has the particles and bonds; with contact rank 0
-  // keeps a copy of the candidates (contact_copy()). For a case whose
-  // checks read no copy (rank_zero_needs_copy).
+  // keeps a copy of the candidates (contact_copy()), and the gas's windows
+  // read the outlines' nodes each rank hosts.
   RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head);
   ~RankedStepper() override;
 
@@ -140,6 +144,13 @@ class RankedStepper final : public Stepper {
   RunCounts counts() const override { return counts_; }
   ContactCopy* contact_copy() override { return contact_copy_.get(); }
   ParticleFacts particle_facts(SolverState& global, std::size_t i) override;
+  // Without a copy: the nodes each rank hosts, shared by every rank, and
+  // rank 0's bodies brought up to date; the forces go to every rank's gas
+  // loads with its next batch (or round).
+  OutlineMotion gas_outline_motion(SolverState& global,
+                                   const std::vector<PressureSurface>& outlines) override;
+  void give_gas_forces(SolverState& global, const CaseSpec& spec, const OutlineMotion& motion,
+                       const GasNodeForces& forces) override;
   // Each rank's report, asked now, with the slices' moves so far.
   std::vector<RankTimes> rank_times(SolverState& global) override;
   // Each rank steps with its threads forking and joining per loop.
@@ -171,10 +182,11 @@ class RankedStepper final : public Stepper {
   PlacedRows placed_;                    // of the last placement's round
   std::int64_t good_step_ = -1;          // of the ranks' last good slices
   double good_peak_work_ = 0;
-  RunCounts counts_;           // without it, what it records of them
-  ParticleFacts described_;    // of the last describe round
-  bool ranks_ahead_ = false;   // stepped since rank 0's copy was brought back
-  bool ranks_behind_ = false;  // rank 0's copy changed since they got it
+  RunCounts counts_;             // without it, what it records of them
+  ParticleFacts described_;      // of the last describe round
+  bool ranks_ahead_ = false;     // stepped since rank 0's copy was brought back
+  bool ranks_behind_ = false;    // rank 0's copy changed since they got it
+  bool gas_forces_due_ = false;  // the gas's forces wait for the ranks' next round
 };
 
 // A follower's whole life: receives the case, sets its part up, and steps

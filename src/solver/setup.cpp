@@ -1,6 +1,6 @@
 #include "src/solver/setup.hpp"
 
-#include "src/solver/gas_coupling.hpp"
+#include "src/solver/gas_outlines.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -182,7 +182,8 @@ SolverState set_up(const CaseSpec& spec, PhaseTimers& timers) {
       load.surface = case_pressure_surface(spec, l, load.range.begin);
     s.loads.push_back(load);
   }
-  add_gas_loads(spec, s);
+  // The gas's loads after the case's own.
+  for (StepLoad& load : gas_loads(spec, s.body_ranges)) s.loads.push_back(std::move(load));
   return s;
 }
 
@@ -201,9 +202,14 @@ void finish_set_up(SolverState& s, const CaseSpec& spec) {
 
 void put_loads_in_case_order(const CaseSpec& spec, std::vector<StepLoad>& loads) {
   std::vector<StepLoad> ordered;
-  for (const LoadSpec& l : spec.loads)
+  const auto take = [&](const std::string& name) {
     for (StepLoad& load : loads)
-      if (load.name == l.name) ordered.push_back(std::move(load));
+      if (load.name == name) ordered.push_back(std::move(load));
+  };
+  for (const LoadSpec& l : spec.loads) take(l.name);
+  // The gas's loads after the case's own, as set_up makes them.
+  for (const int b : spec.gas.bodies)
+    take(kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name);
   loads = std::move(ordered);
 }
 

@@ -47,7 +47,8 @@ void place_particle(ParticleStore& p, std::size_t i, const CaseSpec& spec, std::
 // their storage ranges `body_ranges`.
 double case_energy_floor(const CaseSpec& spec, const std::vector<Range>& body_ranges);
 
-// `loads` (some of the case's, in any order) in the case's order.
+// `loads` (some of the case's and of its gas's, in any order) in the order
+// set_up makes them: the case's, then the gas's.
 void put_loads_in_case_order(const CaseSpec& spec, std::vector<StepLoad>& loads);
 
 // Each load's first step k (k dt >= its start) and the damping's window;

@@ -29,7 +29,7 @@ namespace {
 std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
                                       Followers* followers, RankZeroCopy copy,
                                       PhaseTimers& timers) {
-  if (followers && !rank_zero_needs_copy(spec, copy)) {
+  if (followers && copy == RankZeroCopy::as_needed) {
     auto t = timers.time(Phase::setup);
     return std::make_unique<RankedStepper>(spec, *followers, state);
   }
@@ -39,10 +39,6 @@ std::unique_ptr<Stepper> make_stepper(const CaseSpec& spec, SolverState& state,
   return std::make_unique<OneRankStepper>(spec, state);
 }
 }  // namespace
-
-bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy) {
-  return copy == RankZeroCopy::whole || !part_set_up_covers(spec);
-}
 
 Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy copy)
     : spec_(spec) {
@@ -62,7 +58,10 @@ Simulation::Simulation(const CaseSpec& spec, Followers* followers, RankZeroCopy 
   stepper_->set_time_step(spec_);
   limit_speed_ = spec_.stability.max_speed * dilatational_wave_speed(spec_.materials);
   energy_floor_ = case_energy_floor(spec_, state_.body_ranges);
-  if (spec_.gas.enabled) gas_ = std::make_unique<GasCoupling>(spec_, state_);
+  if (spec_.gas.enabled) {
+    gas_ = std::make_unique<GasCoupling>(spec_, state_);
+    gas_->place_walls(stepper_->gas_outline_motion(state_, gas_->outlines()));
+  }
   const Diagnostics start = diagnostics();
   initial_energy_ = start.kinetic_energy + start.strain_energy + start.contact_energy;
 }
@@ -85,15 +84,18 @@ void Simulation::advance(std::int64_t steps) {
   // The solid in the gas's windows: the gas steps at each window's start.
   while (steps > 0 && !gas_failed()) {
     if (state_.step >= gas_->next_exchange()) {
-      SolverState& s = state_to_change();
       auto t = timers_.time(Phase::gas);
+      const OutlineMotion now = stepper_->gas_outline_motion(state_, gas_->outlines());
+      GasNodeForces forces;
       try {
-        gas_->exchange(s, spec_.dt);
+        forces = gas_->window(state_, now, spec_.dt);
       } catch (const GasFailure& e) {
         gas_failure_ = fmt::format("{} in the gas step from t = {:.6g} s (step {})", e.what(),
                                    time(), state_.step);
         return;
       }
+      rank_readings_step_ = -1;
+      stepper_->give_gas_forces(state_, spec_, now, forces);
     }
     const std::int64_t n = std::min(steps, gas_->next_exchange() - state_.step);
     stepper_->advance(state_, n, timers_);
@@ -162,7 +164,9 @@ Diagnostics Simulation::current_diagnostics() {
   auto t = timers_.time(Phase::diagnostics);
   Diagnostics d = diagnostics_with_strain_energy(state_, stepper_->strain_energy(state_));
   add_contact_figures(d);
-  if (gas_) d.gas = gas_->figures(state_);
+  if (gas_)
+    d.gas =
+        gas_->figures([&](std::size_t l) { return load_work(state_.particles, state_.loads[l]); });
   return d;
 }
 
@@ -200,6 +204,7 @@ Diagnostics Simulation::diagnostics() {
     rank_readings_ = std::move(f.readings);
     rank_readings_step_ = state_.step;
     add_contact_figures(f.diagnostics);
+    add_gas_figures(f.diagnostics, rank_readings_.load_work);
     return f.diagnostics;
   }
   refresh_fields();
@@ -256,8 +261,12 @@ void Simulation::restore_gas() {
   gas_failure_.clear();
 }
 
+void Simulation::add_gas_figures(Diagnostics& d, const std::vector<double>& load_work) const {
+  if (gas_) d.gas = gas_->figures([&](std::size_t l) { return load_work.at(l); });
+}
+
 bool Simulation::checks_on_ranks() const {
-  if (!stepper_->checks_on_ranks() || gas_) return false;
+  if (!stepper_->checks_on_ranks()) return false;
   // With a whole copy, contact's figures read it.
   return !state_.contact.enabled() || stepper_->contact_copy();
 }
@@ -275,7 +284,10 @@ StabilityVerdict Simulation::check_stability(Diagnostics* diagnostics_out) {
     CheckFigures f = stepper_->check_figures(state_, timers_);
     rank_readings_ = std::move(f.readings);
     rank_readings_step_ = state_.step;
-    if (f.finite.ok && !f.integrity.failed) add_contact_figures(f.diagnostics);
+    if (f.finite.ok && !f.integrity.failed) {
+      add_contact_figures(f.diagnostics);
+      add_gas_figures(f.diagnostics, rank_readings_.load_work);
+    }
     return judge(f, diagnostics_out);
   }
   CheckFigures f;

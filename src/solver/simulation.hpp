@@ -24,13 +24,10 @@ class Followers;
 class GasCoupling;
 
 // Over MPI ranks, whether rank 0 keeps a copy of the particles and bonds:
-// only where it must (`as_needed`: a case with a gas or a pressure load,
-// whose reads rank 0 does from its copy), or always (`whole`: a
-// resume from a checkpoint whose rows cannot be read in place, which
-// restores the whole checkpoint there).
+// only where it must (`as_needed`: never, every read comes from the
+// ranks), or always (`whole`: a resume from a checkpoint whose rows cannot
+// be read in place, which restores the whole checkpoint there).
 enum class RankZeroCopy { as_needed, whole };
-// Whether rank 0 of several keeps the whole copy for `spec` asked `copy`.
-bool rank_zero_needs_copy(const CaseSpec& spec, RankZeroCopy copy);
 
 class Simulation {
  public:
@@ -158,9 +155,12 @@ class Simulation {
   ContactParticles contact_particles();
   // The contact energy and the closest pair, into `d`.
   void add_contact_figures(Diagnostics& d);
+  // The gas's figures into `d`, its coupling error from each load's work
+  // (a check round's readings over ranks).
+  void add_gas_figures(Diagnostics& d, const std::vector<double>& load_work) const;
   // Whether a check can read the ranks' shares instead of rank 0's copy:
-  // over ranks, without a gas (the gas reads the particles) and, with
-  // contact, where rank 0 keeps a copy of the candidates.
+  // over ranks and, with contact, where rank 0 keeps a copy of the
+  // candidates.
   bool checks_on_ranks() const;
   // A check's figures from rank 0's copy of the whole state (brought back),
   // and the verdicts from figures, either way (`contact` checked between

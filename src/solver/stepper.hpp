@@ -15,6 +15,7 @@
 #include "src/core/stable_step_estimate.hpp"
 #include "src/core/timers.hpp"
 #include "src/distributed/bond_table_facts.hpp"
+#include "src/solver/gas_outlines.hpp"
 #include "src/solver/rank_checks.hpp"
 
 namespace mpsolid {
@@ -109,6 +110,24 @@ class Stepper {
   virtual ParticleFacts particle_facts(SolverState& state, std::size_t i) {
     bring_to_rank_zero(state);
     return ParticleFacts::of(state.particles, i);
+  }
+  // At a gas window's start: the nodes' motion of the gas's `outlines`
+  // (over the whole state's storage indices), from `state` brought up to
+  // date, or over ranks without a copy from the nodes each rank hosts
+  // (rank 0's bodies brought up to date too).
+  virtual OutlineMotion gas_outline_motion(SolverState& state,
+                                           const std::vector<PressureSurface>& outlines) {
+    bring_to_rank_zero(state);
+    return outline_motion(state.particles, outlines);
+  }
+  // Then the gas's node forces to the gas loads (give_gas_forces at the
+  // nodes of `motion`): in `state`, which the next advance sends out again,
+  // and over ranks without a copy on every rank too, before its next steps.
+  virtual void give_gas_forces(SolverState& state, const CaseSpec& spec,
+                               const OutlineMotion& motion, const GasNodeForces& forces) {
+    bring_to_rank_zero(state);
+    mpsolid::give_gas_forces(spec, state.loads, motion, forces);
+    state_changed();
   }
   // Each rank's times, halo cost and memory so far, for run.json (empty on
   // one rank).

@@ -20,6 +20,7 @@
 #include "src/io/history_writer.hpp"
 #include "src/solver/case_loader.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/gas_outlines.hpp"
 #include "src/solver/rank_checks.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
@@ -211,6 +212,47 @@ TEST(Ranks, ACheckFromTheRanksSharesHasTheWholeStatesFigures) {
   // In space: a spinning cube cut across the ranks, every momentum a vector.
   expect_whole_state_check(
       load_case(testing::source_path("cases/spinning_cube.toml"), {"l0=0.008"}), 100);
+}
+
+// A gas window's outline nodes over ranks (src/solver/gas_outlines.hpp):
+// after decomposed steps, the nodes' positions and velocities every rank
+// shares are those of the whole state the ranks' owned particles make, bit
+// for bit (the ghosts, which the steps leave a step behind, brought up to
+// date first): the rod's, the thrown plate's and the wall's.
+TEST(Ranks, TheGasOutlinesNodesSharedAfterDecomposedStepsAreTheWholeStates) {
+  set_thread_count(1);
+  const Communicator& world = Communicator::world();
+  Simulation base(
+      load_case(testing::source_path("cases/shock_rod_gas.toml"),
+                {"l0=0.004", "bodies.plate.velocity=[30.0, -10.0]", "bodies.plate.spin=400.0"}));
+  const CaseSpec& spec = base.spec();
+  RankPart part = make_rank_part(spec, base.state(), world);
+  advance_rank_part(part, world, spec.dt, 200);
+  SolverState whole = base.state();
+  const LocalLayout& layout = part.layout;
+  for (std::vector<double> ParticleStore::*member :
+       {&ParticleStore::x, &ParticleStore::y, &ParticleStore::vx, &ParticleStore::vy}) {
+    const std::vector<double>& mine = part.local.particles.*member;
+    whole.particles.*member =
+        world.all_gather(std::vector<double>(mine.begin() + static_cast<long>(layout.owned.begin),
+                                             mine.begin() + static_cast<long>(layout.owned.end)));
+  }
+  const OutlineMotion expected =
+      outline_motion(whole.particles, gas_outlines(spec, whole.body_ranges));
+  const OutlineMotion at_start =
+      outline_motion(base.state().particles, gas_outlines(spec, whole.body_ranges));
+  const OutlineMotion shared =
+      shared_outline_motion(part, part_gas_outlines(spec, part.body_ranges, layout), world);
+  ASSERT_EQ(shared.size(), 3u);  // the rod, the plate, the wall
+  ASSERT_EQ(expected.size(), 3u);
+  for (std::size_t o = 0; o < 3; ++o) {
+    ASSERT_EQ(shared[o].size(), expected[o].size());
+    EXPECT_EQ(std::memcmp(shared[o].data(), expected[o].data(), 8 * expected[o].size()), 0)
+        << "outline " << o;
+    if (o < 2) {
+      EXPECT_NE(expected[o], at_start[o]) << "outline " << o << " moved";
+    }
+  }
 }
 
 TEST(Ranks, DecomposedStepGivesTheSerialBits) {

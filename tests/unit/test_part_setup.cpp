@@ -24,6 +24,7 @@
 #include "src/solver/contact_copy.hpp"
 #include "src/solver/contact_setup.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/gas_outlines.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/setup.hpp"
 #include "src/solver/simulation.hpp"
@@ -83,7 +84,6 @@ void expect_the_whole_states_parts(const std::string& case_file,
   const Whole w = whole_state(case_file, overrides);
   const CaseSpec& spec = w.spec;
   const SolverState& global = w.state;
-  ASSERT_TRUE(part_set_up_covers(spec)) << case_file;
   for (const int ranks : {2, 3, 5}) {
     const Decomposition d = decompose_state(global, ranks);
     const std::vector<LocalPart> parts = parts_set_up_alone(spec, d);
@@ -168,6 +168,13 @@ TEST(PartSetUp, ADiskUnderABlastWave) {
 TEST(PartSetUp, TheRodInSpaceUnderAPressureWithContact) {
   expect_the_whole_states_parts("cases/shock_rod_3d_pressure.toml");
 }
+// Each part holds the gas loads whole over the sites it holds, as pressures.
+TEST(PartSetUp, APanelInAShockTube) {
+  expect_the_whole_states_parts("cases/giordano_panel.toml");
+}
+TEST(PartSetUp, TheRodStruckThroughAGas) {
+  expect_the_whole_states_parts("cases/shock_rod_gas.toml");
+}
 
 // What rank 0 keeps when it holds no particle, from every rank's part set
 // up alone on the cut made from the case (decompose_case): the bond table's
@@ -232,12 +239,6 @@ TEST(PartSetUp, ARigidBodyCutInTwoIsRefused) {
     EXPECT_THROW(local_part(w.state, d, r), std::invalid_argument);
     EXPECT_THROW(set_up_part(w.spec, d, r), std::invalid_argument);
   }
-}
-
-TEST(PartSetUp, CasesWithAGasAreLeftToTheWholeState) {
-  EXPECT_FALSE(part_set_up_covers(load_case(testing::source_path("cases/giordano_panel.toml"))));
-  for (const char* file : {"cases/colliding_blocks.toml", "cases/ring_pressure.toml"})
-    EXPECT_TRUE(part_set_up_covers(load_case(testing::source_path(file)))) << file;
 }
 
 // Contact needs the ranks: a part set up without them is a mistake.
@@ -369,6 +370,66 @@ TEST(PressureOverRanks, TheWorkFromTheNodesThePartsHostIsTheWholeStates) {
   expect_the_pressures_work_from_the_parts("cases/ring_pressure.toml", 300);
   expect_the_pressures_work_from_the_parts("cases/shock_rod_pressure.toml", 300);
   expect_the_pressures_work_from_the_parts("cases/shock_rod_3d_pressure.toml", 100);
+}
+
+// A gas window over ranks (src/solver/gas_outlines.hpp): the outlines'
+// nodes each part hosts give every node once, with the whole state's
+// positions and velocities bit for bit, and the gas's forces given at them
+// leave every part's gas loads as the whole state's (their work so far,
+// running step and node forces), mid-run.
+void expect_the_gas_window_from_the_parts(const std::string& case_file, std::int64_t steps) {
+  Simulation sim(load_case(testing::source_path(case_file)));
+  sim.advance(steps);
+  const CaseSpec& spec = sim.spec();
+  const SolverState& global = sim.state();
+  const std::vector<PressureSurface> outlines = gas_outlines(spec, global.body_ranges);
+  const OutlineMotion whole = outline_motion(global.particles, outlines);
+  GasNodeForces forces;  // any forces: a ramp over the nodes
+  for (const StepLoad& load : gas_loads(spec, global.body_ranges))
+    for (std::size_t k = 0; k < 2 * load.surface.nodes(); ++k)
+      forces.push_back(1e-3 * static_cast<double>(k) - 0.7);
+  ASSERT_FALSE(forces.empty());
+  std::vector<StepLoad> whole_loads = global.loads;
+  give_gas_forces(spec, whole_loads, whole, forces);
+  for (const int ranks : {2, 3, 5}) {
+    SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
+    const Decomposition d = decompose_case(spec, ranks);
+    std::vector<LocalPart> parts;
+    std::vector<double> hosted;
+    for (int r = 0; r < ranks; ++r) {
+      parts.push_back(local_part(global, d, r));
+      append_hosted_outline_motion(
+          parts.back().state.particles,
+          part_gas_outlines(spec, parts.back().body_ranges, parts.back().layout), hosted);
+    }
+    const OutlineMotion shared = assemble_outline_motion(outlines, hosted);
+    ASSERT_EQ(shared.size(), whole.size());
+    for (std::size_t o = 0; o < whole.size(); ++o)
+      EXPECT_EQ(std::memcmp(shared[o].data(), whole[o].data(), 8 * whole[o].size()), 0) << o;
+    for (LocalPart& part : parts) {
+      give_gas_forces(spec, part.state.loads, shared, forces);
+      std::size_t compared = 0;
+      for (const StepLoad& mine : part.state.loads)
+        for (const StepLoad& load : whole_loads) {
+          if (mine.name != load.name || mine.name.rfind(kGasLoadPrefix, 0) != 0) continue;
+          EXPECT_TRUE(load.active);
+          EXPECT_NE(load.work, 0.0);
+          EXPECT_EQ(mine.work, load.work);
+          for (const auto& [a, b] : {std::pair{&mine.surface.x, &load.surface.x},
+                                     {&mine.surface.y, &load.surface.y},
+                                     {&mine.surface.fx, &load.surface.fx},
+                                     {&mine.surface.fy, &load.surface.fy}})
+            EXPECT_TRUE(*a == *b);
+          ++compared;
+        }
+      EXPECT_EQ(compared, whole_loads.size() - spec.loads.size());
+    }
+  }
+}
+
+TEST(GasOverRanks, TheOutlinesNodesThePartsHostAndTheForcesGivenThereAreTheWholeStates) {
+  expect_the_gas_window_from_the_parts("cases/giordano_panel.toml", 300);
+  expect_the_gas_window_from_the_parts("cases/shock_rod_gas.toml", 300);
 }
 
 }  // namespace
