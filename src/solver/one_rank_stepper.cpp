@@ -75,6 +75,20 @@ void OneRankStepper::bring_to_rank_zero(SolverState& state) {
   parts_ahead_ = false;
 }
 
+OutlineMotion OneRankStepper::gas_outline_motion(SolverState& state,
+                                                 const std::vector<PressureSurface>& outlines) {
+  OutlineMotion motion;
+  if (parts_ahead_ && parts_->gas_outline_motion(motion)) return motion;
+  return Stepper::gas_outline_motion(state, outlines);
+}
+
+void OneRankStepper::give_gas_forces(SolverState& state, const CaseSpec& spec,
+                                     const OutlineMotion& motion, const GasNodeForces& forces) {
+  // The parts hold the state (the whole one takes theirs at its next read).
+  if (parts_ahead_ && parts_->give_gas_forces(motion, forces)) return;
+  Stepper::give_gas_forces(state, spec, motion, forces);
+}
+
 void OneRankStepper::keep_good(SolverState& state) {
   bring_to_rank_zero(state);
   good_ = StateSnapshot::capture(state);

@@ -32,6 +32,12 @@ class OneRankStepper final : public Stepper {
                                   const IntegrityLimits& limits) const override;
   void bring_to_rank_zero(SolverState& state) override;
   void state_changed() override { parts_behind_ = true; }
+  // With the threads' parts ahead of the whole state, a gas window on the
+  // parts (ThreadParts::gas_outline_motion): no slice moves.
+  OutlineMotion gas_outline_motion(SolverState& state,
+                                   const std::vector<PressureSurface>& outlines) override;
+  void give_gas_forces(SolverState& state, const CaseSpec& spec, const OutlineMotion& motion,
+                       const GasNodeForces& forces) override;
   void keep_good(SolverState& state) override;
   void restore_good(SolverState& state) override;
   std::int64_t good_step() const override { return good_.step; }

@@ -18,7 +18,8 @@ struct ThreadPart {
       : part(std::move(p)), ranks(boxes, rank), rebuilds_reported(part.local.contact.rebuilds) {}
   RankPart part;
   ThreadRanks ranks;
-  std::int64_t rebuilds_reported;  // contact list rebuilds already given back
+  std::int64_t rebuilds_reported;             // contact list rebuilds already given back
+  std::vector<PressureSurface> gas_outlines;  // with a gas, as this part holds them
 };
 
 template <class F>
@@ -52,8 +53,11 @@ void ThreadParts::build(const SolverState& global) {
   const bool whole = on_each_thread([&](int t) {
     try {
       parts_[static_cast<std::size_t>(t)].reset();  // its memory freed on its own thread
-      parts_[static_cast<std::size_t>(t)] = std::make_unique<ThreadPart>(
+      auto& part = parts_[static_cast<std::size_t>(t)];
+      part = std::make_unique<ThreadPart>(
           make_rank_part(spec_, local_part(global, decomposition_, t)), *boxes_, t);
+      if (spec_.gas.enabled)
+        part->gas_outlines = part_gas_outlines(spec_, part->part.body_ranges, part->part.layout);
     } catch (...) {
       failed[static_cast<std::size_t>(t)] = std::current_exception();
     }
@@ -178,6 +182,21 @@ void ThreadParts::bring_back(SolverState& global) {
   contact.rebuilds += lead.part.local.contact.rebuilds - lead.rebuilds_reported;
   for (std::unique_ptr<ThreadPart>& mine : parts_)
     mine->rebuilds_reported = mine->part.local.contact.rebuilds;
+}
+
+bool ThreadParts::gas_outline_motion(OutlineMotion& motion) {
+  return on_each_thread([&](int t) {
+    ThreadPart& mine = *parts_[static_cast<std::size_t>(t)];
+    OutlineMotion shared = shared_outline_motion(mine.part, mine.gas_outlines, mine.ranks);
+    if (t == 0) motion = std::move(shared);
+  });
+}
+
+bool ThreadParts::give_gas_forces(const OutlineMotion& motion, const GasNodeForces& forces) {
+  return on_each_thread([&](int t) {
+    mpsolid::give_gas_forces(spec_, parts_[static_cast<std::size_t>(t)]->part.local.loads, motion,
+                             forces);
+  });
 }
 
 ThreadCrossing ThreadParts::crossing() const {

@@ -13,7 +13,7 @@
 //
 // The whole state stays the home of the particles between batches: the
 // parts take their slices of it before a batch when it changed, and give
-// them back when it is read.
+// them back when it is read (a gas window reads and sets the parts alone).
 //
 // The first cut balances bond entries plus particles. The threads then
 // measure their passes, and while the slowest is more than kImbalance
@@ -31,6 +31,7 @@
 #include "src/core/timers.hpp"
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/thread_ranks.hpp"
+#include "src/solver/gas_outlines.hpp"
 
 namespace mpsolid {
 
@@ -63,6 +64,13 @@ class ThreadParts {
   bool advance(SolverState& global, std::int64_t steps, bool take_slices, PhaseTimers& timers);
   // Gives every part's slice back to `global` (with contact's counters).
   void bring_back(SolverState& global);
+  // A gas window on the parts, as over MPI ranks (src/solver/
+  // gas_outlines.hpp): the outlines' nodes each part hosts, shared by the
+  // threads, into `motion`; then the gas's node forces to every part's gas
+  // loads at those nodes. No slice moves. False, with nothing done, when
+  // OpenMP gave a team of another size.
+  bool gas_outline_motion(OutlineMotion& motion);
+  bool give_gas_forces(const OutlineMotion& motion, const GasNodeForces& forces);
   // Cuts `global` again by `next` (same thread count): the parts' particles
   // brought back into it first, then each thread builds its new part.
   void cut_again(SolverState& global, const Decomposition& next);
