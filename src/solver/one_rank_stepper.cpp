@@ -78,14 +78,19 @@ void OneRankStepper::bring_to_rank_zero(SolverState& state) {
 OutlineMotion OneRankStepper::gas_outline_motion(SolverState& state,
                                                  const std::vector<PressureSurface>& outlines) {
   OutlineMotion motion;
-  if (parts_ahead_ && parts_->gas_outline_motion(motion)) return motion;
+  if (parts_ && !parts_behind_ && parts_->gas_outline_motion(motion)) return motion;
   return Stepper::gas_outline_motion(state, outlines);
 }
 
 void OneRankStepper::give_gas_forces(SolverState& state, const CaseSpec& spec,
                                      const OutlineMotion& motion, const GasNodeForces& forces) {
-  // The parts hold the state (the whole one takes theirs at its next read).
-  if (parts_ahead_ && parts_->give_gas_forces(motion, forces)) return;
+  if (parts_ && !parts_behind_ && parts_->give_gas_forces(motion, forces)) {
+    // Ahead, the parts hold the state (the whole one takes theirs at its
+    // next read); else the whole state, as current as they are, takes the
+    // forces too.
+    if (!parts_ahead_) mpsolid::give_gas_forces(spec, state.loads, motion, forces);
+    return;
+  }
   Stepper::give_gas_forces(state, spec, motion, forces);
 }
 

@@ -32,7 +32,7 @@ class OneRankStepper final : public Stepper {
                                   const IntegrityLimits& limits) const override;
   void bring_to_rank_zero(SolverState& state) override;
   void state_changed() override { parts_behind_ = true; }
-  // With the threads' parts ahead of the whole state, a gas window on the
+  // With the threads' parts holding the current state, a gas window on the
   // parts (ThreadParts::gas_outline_motion): no slice moves.
   OutlineMotion gas_outline_motion(SolverState& state,
                                    const std::vector<PressureSurface>& outlines) override;
