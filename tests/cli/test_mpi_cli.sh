@@ -18,7 +18,8 @@
 #  - a pressure load at 2 and 3 ranks, and resumed at 3, too, rank 0
 #    holding no copy and no slice moving;
 #  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
-#    during the shock's reflection, gives the serial bits;
+#    during the shock's reflection, gives the serial bits, and so does the
+#    rod in the gas at 3 ranks, rank 0 holding no copy, no slice moving;
 #  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
 #    resumes to the serial bits;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
@@ -27,7 +28,8 @@
 #    times, and its halo time and bytes, and what rank 0 held: no copy of
 #    the particles for the rod (every rank sets its own part up), its
 #    resume and its compressed frames, and contact and its resume (rank 0
-#    keeps a copy of the candidates only), a whole one with a gas;
+#    keeps a copy of the candidates only), a whole one for a checkpoint of
+#    format 3 resumed at 2 ranks (the same bits as its resume on one rank);
 #  - the particles stay on their ranks: no slice comes back to rank 0 for a
 #    check, a history row, a frame or a checkpoint (run.json's slice_moves):
 #    each rank writes its own particles' rows of the frames and checkpoints,
@@ -427,6 +429,27 @@ mpi 3 gas_resume resume "$TMP/gas_half" --set time.end=4e-5 --threads 1
 [[ $rc -eq 0 ]] && same "gas at 2 ranks, resumed at 3 in the reflection" "$TMP/gas_half" \
   "$TMP/gas_serial" || fail "gas resumed at 3 ranks: exit $rc"
 copy_is "gas at 2 ranks, resumed at 3" "$TMP/gas_half" none
+# A checkpoint whose rows cannot be read in place (format 3, the regression
+# data's: the rod at l0 = 4 mm after 1,000 steps) resumed at 2 ranks: rank
+# 0 restores it whole and sends each rank its part (a whole copy), with the
+# bits of its resume on one rank. Its run folder is the same run's outputs
+# by this build, their run id made the checkpoint's.
+"$BIN" run "$CASE" --set l0=0.004 --set time.end=1e-5 --out "$TMP/f3_one" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the run for the format-3 checkpoint failed"
+cp tests/regression/data/shock_rod_checkpoint_format3.h5 "$TMP/f3_one/checkpoint.h5"
+/usr/bin/python3 -c '
+import sys, h5py
+run_id = h5py.File(sys.argv[1] + "/checkpoint.h5", "r").attrs["run_id"]
+with h5py.File(sys.argv[1] + "/frames.h5", "r+") as frames:
+    frames.attrs["run_id"] = run_id' "$TMP/f3_one"
+cp -r "$TMP/f3_one" "$TMP/f3_two"
+"$BIN" resume "$TMP/f3_one" --set time.end=2e-5 --threads 1 >/dev/null 2>&1 </dev/null ||
+  fail "the format-3 checkpoint resumed on one rank failed"
+mpi 2 f3_two resume "$TMP/f3_two" --set time.end=2e-5 --threads 1
+[[ $rc -eq 0 ]] && same "a format-3 checkpoint resumed at 2 ranks" "$TMP/f3_two" "$TMP/f3_one" ||
+  fail "a format-3 checkpoint resumed at 2 ranks: exit $rc"
+copy_is "a format-3 checkpoint resumed at 2 ranks" "$TMP/f3_two" whole
+
 # The rod struck through the gas: a rigid plate and a wall among the
 # outlines (the wall's nodes hosted by the rank that owns it).
 ROD_GAS=(cases/shock_rod_gas.toml --set time.end=1e-4 --set output.frame_interval=5e-5)
