@@ -2,17 +2,20 @@
 """Runs every case in cases/, shortened, on one process and under mpirun at
 several rank and thread counts, and checks each run has the serial run's
 bits (compare_runs.py), what rank 0 held of the particles and how many
-slices came back to it (run.json).
+slices came back to it (run.json); and that a run stopped half way at the
+first rank count resumes at each of the others (and at one rank) to the
+serial run's bits.
 
     /usr/bin/python3 tests/tools/rank_sweep.py build/release/mpsolid mpirun \
-        [--ranks 2 3 4] [--threads 1 2] [--steps 100] [--only NAME ...]
+        [--ranks 2 3 4] [--threads 1 2] [--steps 100] [--no-resume] [--only NAME ...]
 
 Each case runs about `--steps` of its own steps (its dt, given or chosen,
 read from the refusal of a too short run), with a frame and a checkpoint
 every half of them and a history row every tenth. One line per case;
-exits 1 if any run differs from its serial run or ends otherwise. About 25
-minutes for the 21 cases at 2, 3 and 4 ranks x 1 and 2 threads on 2 cores:
-a check by hand, not a CI test (docs/mpi.md).
+exits 1 if any run differs from its serial run or ends otherwise. About 22
+minutes for the 21 cases at 2, 3 and 4 ranks x 1 and 2 threads with their
+resumes on 2 cores: a check by hand (docs/mpi.md); ctest rank_sweep_quick
+runs 4 cases at 2 ranks.
 """
 import argparse
 import glob
@@ -43,6 +46,20 @@ def rank_facts(folder):
     return run.get("rank_zero_copy"), sum(r["slice_moves"] for r in run.get("per_rank", []))
 
 
+def launch(args, ranks, mpsolid, command, env):
+    """mpsolid COMMAND under mpirun at `ranks` ranks (on one process at 1)."""
+    prefix = [] if ranks == 1 else [args.mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
+                                    str(ranks)]
+    return subprocess.run([*prefix, mpsolid, *command], capture_output=True, text=True, env=env)
+
+
+def compare(serial, out):
+    """Whether `out` has the serial run's bits, and compare_runs.py's first line."""
+    compared = subprocess.run([sys.executable, os.path.join(HERE, "compare_runs.py"), serial, out],
+                              capture_output=True, text=True)
+    return compared.returncode == 0, (compared.stdout.strip().splitlines() or ["?"])[0]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("mpsolid")
@@ -50,6 +67,7 @@ def main():
     parser.add_argument("--ranks", type=int, nargs="+", default=[2, 3, 4])
     parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--steps", type=int, default=100)
+    parser.add_argument("--no-resume", action="store_true", help="skip the resumes")
     parser.add_argument("--only", nargs="+", help="case names (default: every case)")
     args = parser.parse_args()
     mpsolid = os.path.abspath(args.mpsolid)
@@ -72,7 +90,7 @@ def main():
             for key, value in (("time.end", n * dt), ("output.frame_interval", n // 2 * dt),
                                ("output.checkpoint_interval", n // 2 * dt),
                                ("output.history_interval", n // 10 * dt)):
-                sets += ["--set", f"{key}={value:.6g}"]
+                sets += ["--set", f"{key}={value!r}"]
             serial = os.path.join(scratch, f"{name}_serial")
             one = subprocess.run([mpsolid, "run", case, *sets, "--out", serial, "--threads", "1"],
                                  capture_output=True, text=True, env=env)
@@ -82,25 +100,50 @@ def main():
                 failures += 1
                 continue
             results = []
+            if one.returncode == 0 and not args.no_resume:
+                # Half the run at the first rank count, the rest at every
+                # other count and at one rank.
+                half = os.path.join(scratch, f"{name}_half")
+                shutil.rmtree(half, ignore_errors=True)
+                first = args.ranks[0]
+                ended = launch(args, first, mpsolid,
+                               ["run", case, *sets, "--set", f"time.end={n // 2 * dt!r}", "--out",
+                                half, "--threads", "1"], env)
+                for ranks in [r for r in [1, *args.ranks] if r != first]:
+                    label = f"{first}->{ranks}"
+                    folder = os.path.join(scratch, f"{name}_{label}")
+                    shutil.rmtree(folder, ignore_errors=True)
+                    if ended.returncode != 0:
+                        failures += 1
+                        results.append(f"{label}: the half run ended {ended.returncode}")
+                        break
+                    shutil.copytree(half, folder)
+                    resumed = launch(args, ranks, mpsolid,
+                                     ["resume", folder, "--set", f"time.end={n * dt!r}",
+                                      "--threads", "1"], env)
+                    same, first_difference = compare(serial, folder)
+                    same = same and resumed.returncode == 0
+                    failures += 0 if same else 1
+                    results.append(f"resumed {label}: " + ("same" if same else
+                                   f"DIFFERENT (exit {resumed.returncode}: {first_difference})"))
+                    shutil.rmtree(folder, ignore_errors=True)
+                shutil.rmtree(half, ignore_errors=True)
             for ranks in args.ranks:
                 for threads in args.threads:
                     label = f"{ranks}x{threads}"
                     out = os.path.join(scratch, f"{name}_{label}")
-                    run = subprocess.run(
-                        [args.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
-                         mpsolid, "run", case, *sets, "--out", out, "--threads", str(threads),
-                         "--fixed-threads"], capture_output=True, text=True, env=env)
+                    run = launch(args, ranks, mpsolid,
+                                 ["run", case, *sets, "--out", out, "--threads", str(threads),
+                                  "--fixed-threads"], env)
                     if run.returncode != one.returncode:
                         failures += 1
                         results.append(f"{label}: ended {run.returncode}, serial {one.returncode}")
                         continue
-                    compared = subprocess.run([sys.executable, os.path.join(HERE, "compare_runs.py"),
-                                               serial, out], capture_output=True, text=True)
                     copy, moves = rank_facts(out)
-                    same = compared.returncode == 0
+                    same, first_difference = compare(serial, out)
                     failures += 0 if same else 1
-                    results.append(f"{label}: {'same' if same else 'DIFFERENT'} copy={copy} "
-                                   f"moves={moves}")
+                    results.append(f"{label}: {'same' if same else 'DIFFERENT: ' + first_difference}"
+                                   f" copy={copy} moves={moves}")
                     shutil.rmtree(out, ignore_errors=True)
             shutil.rmtree(serial, ignore_errors=True)
             print(f"{name} (dt {dt:.4g} s, exit {one.returncode}): " + "; ".join(results), flush=True)
