@@ -6,9 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "src/core/loads.hpp"
 #include "src/core/rigid_body.hpp"
-#include "src/core/surface.hpp"
 #include "src/gas/shock_relations.hpp"
 
 namespace mpsolid {

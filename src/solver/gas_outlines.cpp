@@ -1,7 +1,9 @@
 #include "src/solver/gas_outlines.hpp"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
+#include <string>
 
 #include "src/core/surface.hpp"
 
@@ -18,6 +20,16 @@ PressureSurface gas_outline(const CaseSpec& spec, int body, std::size_t first) {
   std::vector<std::uint32_t> all(surface.nodes());
   for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
   return make_pressure_surface(surface, all, first, 0.0, spec.depth);
+}
+
+// Body b's gas load among `loads`.
+template <class Loads>
+auto& gas_load_of(const CaseSpec& spec, int b, Loads& loads) {
+  const std::string name = kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name;
+  const auto load =
+      std::find_if(loads.begin(), loads.end(), [&](const StepLoad& l) { return l.name == name; });
+  if (load == loads.end()) throw std::logic_error("no gas load " + name);
+  return *load;
 }
 
 // Node k's position and velocity.
@@ -37,17 +49,24 @@ std::vector<PressureSurface> gas_outlines(const CaseSpec& spec,
 }
 
 std::vector<PressureSurface> part_gas_outlines(const CaseSpec& spec,
+                                               const std::vector<StepLoad>& loads,
                                                const std::vector<Range>& body_ranges,
                                                const LocalLayout& layout) {
   std::vector<PressureSurface> out;
-  for (const PressureSurface& whole : gas_outlines(spec, body_ranges))
+  for (const int b : spec.gas.bodies) {
+    // A moving body's outline is its gas load's surface, as the part holds it.
+    if (moves(spec, b)) {
+      out.push_back(gas_load_of(spec, b, loads).surface);
+      continue;
+    }
     out.push_back(local_pressure_surface(
-        whole,
+        gas_outline(spec, b, body_ranges.at(static_cast<std::size_t>(b)).begin),
         [&](std::uint32_t g) {
           const std::int64_t at = layout.find(g);
           return at >= 0 ? static_cast<std::uint32_t>(at) : PressureSurface::kElsewhere;
         },
         [&](std::uint32_t i) { return i >= layout.owned.begin && i < layout.owned.end; }));
+  }
   return out;
 }
 
@@ -127,24 +146,21 @@ void give_gas_forces(const CaseSpec& spec, std::vector<StepLoad>& loads,
   for (std::size_t o = 0; o < spec.gas.bodies.size(); ++o) {
     const int b = spec.gas.bodies[o];
     if (!moves(spec, b)) continue;
-    const std::string name = kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name;
-    const auto load =
-        std::find_if(loads.begin(), loads.end(), [&](const StepLoad& l) { return l.name == name; });
-    if (load == loads.end()) throw std::logic_error("give_gas_forces: no load " + name);
-    PressureSurface& s = load->surface;
+    StepLoad& load = gas_load_of(spec, b, loads);
+    PressureSurface& s = load.surface;
     const std::size_t n = s.nodes();
     if (at + 2 * n > forces.size() || motion.at(o).size() != 4 * n)
-      throw std::logic_error("give_gas_forces: the forces or the nodes do not fit " + name);
+      throw std::logic_error("give_gas_forces: the forces or the nodes do not fit " + load.name);
     std::vector<double> xyz(3 * n, 0.0);
     for (std::size_t k = 0; k < n; ++k) {
       xyz[3 * k] = motion[o][4 * k];
       xyz[3 * k + 1] = motion[o][4 * k + 1];
     }
-    close_running_step_at(*load, xyz);
+    close_running_step_at(load, xyz);
     std::copy_n(forces.begin() + static_cast<long>(at), n, s.given_fx.begin());
     std::copy_n(forces.begin() + static_cast<long>(at + n), n, s.given_fy.begin());
     at += 2 * n;
-    if (load->active) pressure_forces(*load);
+    if (load.active) pressure_forces(load);
   }
   if (at != forces.size()) throw std::logic_error("give_gas_forces: forces left over");
 }

@@ -30,8 +30,10 @@ inline constexpr const char* kGasLoadPrefix = "gas.";
 std::vector<PressureSurface> gas_outlines(const CaseSpec& spec,
                                           const std::vector<Range>& body_ranges);
 // The same as a rank's part holds them (`layout`: its particles), each
-// positioning the nodes whose host it owns.
+// positioning the nodes whose host it owns: a moving body's is its gas
+// load's surface among the part's `loads`, a wall's made from its shape.
 std::vector<PressureSurface> part_gas_outlines(const CaseSpec& spec,
+                                               const std::vector<StepLoad>& loads,
                                                const std::vector<Range>& body_ranges,
                                                const LocalLayout& layout);
 

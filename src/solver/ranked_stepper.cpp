@@ -108,7 +108,8 @@ std::unique_ptr<RankStepping> make_parts(const CaseSpec& spec, LocalPart local) 
   parts->part = make_rank_part(spec, std::move(local));
   parts->rebuilds_reported = parts->part.local.contact.rebuilds;
   if (spec.gas.enabled)
-    parts->gas_outlines = part_gas_outlines(spec, parts->part.body_ranges, parts->part.layout);
+    parts->gas_outlines = part_gas_outlines(spec, parts->part.local.loads, parts->part.body_ranges,
+                                            parts->part.layout);
   return parts;
 }
 
@@ -333,14 +334,14 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   // same running step: rank 0 keeps its own (its nodes' weights over its
   // own part, which only the ranks' steps read), over the body's global
   // range.
-  const std::vector<StepLoad> gas = gas_loads(spec, head.body_ranges);
   for (const StepLoad& l : mine.loads) {
     if (!l.is_pressure()) continue;
     StepLoad& kept = head.loads.emplace_back(l);
     for (const LoadSpec& given : spec.loads)
       if (given.name == l.name) kept.range = head.body_ranges[static_cast<std::size_t>(given.body)];
-    for (const StepLoad& g : gas)
-      if (g.name == l.name) kept.range = g.range;
+    for (const int b : spec.gas.bodies)
+      if (kGasLoadPrefix + spec.bodies[static_cast<std::size_t>(b)].name == l.name)
+        kept.range = head.body_ranges[static_cast<std::size_t>(b)];
   }
   put_loads_in_case_order(spec, head.loads);
   counts_.particles = cut.starts.back();

@@ -15,7 +15,6 @@
 #include "src/solver/gas_coupling.hpp"
 #include "src/solver/initial_motion.hpp"
 #include "src/solver/one_rank_stepper.hpp"
-#include "src/solver/part_setup.hpp"
 #include "src/solver/ranked_stepper.hpp"
 #include "src/solver/setup.hpp"
 #include "src/solver/time_step_choice.hpp"

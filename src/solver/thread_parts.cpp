@@ -57,7 +57,8 @@ void ThreadParts::build(const SolverState& global) {
       part = std::make_unique<ThreadPart>(
           make_rank_part(spec_, local_part(global, decomposition_, t)), *boxes_, t);
       if (spec_.gas.enabled)
-        part->gas_outlines = part_gas_outlines(spec_, part->part.body_ranges, part->part.layout);
+        part->gas_outlines = part_gas_outlines(spec_, part->part.local.loads,
+                                               part->part.body_ranges, part->part.layout);
     } catch (...) {
       failed[static_cast<std::size_t>(t)] = std::current_exception();
     }

@@ -99,6 +99,19 @@ no_copy_at() {
   no_slice_moved "$label" "$TMP/$name"
 }
 
+# at_2_and_3 LABEL NAME SERIAL ARGS...: `run ARGS` on one thread serially
+# into SERIAL, then at 2 and 3 ranks into $TMP/NAME2, $TMP/NAME3
+# (no_copy_at).
+at_2_and_3() {
+  local label=$1 name=$2 serial=$3
+  shift 3
+  "$BIN" run "$@" --out "$serial" --threads 1 >/dev/null 2>&1 </dev/null ||
+    fail "$label: the serial run failed"
+  for ranks in 2 3; do
+    no_copy_at "$ranks" "$label at $ranks ranks" "$name$ranks" "$serial" "$@" --threads 1
+  done
+}
+
 "$BIN" run "$CASE" "${SETS[@]}" --set time.end=2e-4 --out "$TMP/serial" --threads 1 \
   >/dev/null 2>&1 </dev/null || { fail "the serial run failed"; exit 1; }
 
@@ -204,12 +217,7 @@ mpi 3 blast_resume resume "$TMP/blast_half" --set time.end=1e-4
 P_CASE=cases/shock_rod_pressure.toml
 P_SETS=(--set output.frame_interval=5e-5 --set output.checkpoint_interval=1e-4
   --set output.history_interval=1e-5)
-"$BIN" run "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4 --out "$TMP/p_serial" --threads 1 \
-  >/dev/null 2>&1 </dev/null || fail "the serial pressure run failed"
-for ranks in 2 3; do
-  no_copy_at "$ranks" "pressure at $ranks ranks" "pressure$ranks" "$TMP/p_serial" "$P_CASE" \
-    "${P_SETS[@]}" --set time.end=2e-4
-done
+at_2_and_3 pressure pressure "$TMP/p_serial" "$P_CASE" "${P_SETS[@]}" --set time.end=2e-4
 mpi 2 p_half run "$P_CASE" "${P_SETS[@]}" --set time.end=1e-4 --out "$TMP/p_half"
 mpi 3 p_resume resume "$TMP/p_half" --set time.end=2e-4
 [[ $rc -eq 0 ]] && same "pressure at 2 ranks, resumed at 3" "$TMP/p_half" "$TMP/p_serial" ||
@@ -290,12 +298,7 @@ fi
 C_CASE=cases/colliding_blocks.toml
 C_SETS=(--set l0=0.0005 --set output.frame_interval=3e-4 --set output.checkpoint_interval=3e-4
   --set output.history_interval=1e-5)
-"$BIN" run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 --out "$TMP/c_serial" --threads 1 \
-  >/dev/null 2>&1 </dev/null || fail "the contact serial run failed"
-for ranks in 2 3; do
-  no_copy_at "$ranks" "contact at $ranks ranks" "contact$ranks" "$TMP/c_serial" "$C_CASE" \
-    "${C_SETS[@]}" --set time.end=2.4e-3
-done
+at_2_and_3 contact contact "$TMP/c_serial" "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3
 # time.dt = "auto" is estimated on every rank's part, contact's bound
 # included: the serial estimate's bits (run.json).
 for ranks in 2 3; do
@@ -418,12 +421,7 @@ fi
 # each rank hosts).
 GAS=(cases/giordano_panel.toml --set gas.cell=0.001 --set gas.shock.x=-0.002
   --set output.frame_interval=1e-5 --set output.checkpoint_interval=1e-5)
-"$BIN" run "${GAS[@]}" --set time.end=4e-5 --out "$TMP/gas_serial" --threads 1 \
-  >/dev/null 2>&1 </dev/null || fail "the serial gas run failed"
-for ranks in 2 3; do
-  no_copy_at "$ranks" "$ranks ranks, gas" "gas$ranks" "$TMP/gas_serial" "${GAS[@]}" \
-    --set time.end=4e-5 --threads 1
-done
+at_2_and_3 gas gas "$TMP/gas_serial" "${GAS[@]}" --set time.end=4e-5
 mpi 2 gas_half run "${GAS[@]}" --set time.end=2e-5 --out "$TMP/gas_half" --threads 1
 mpi 3 gas_resume resume "$TMP/gas_half" --set time.end=4e-5 --threads 1
 [[ $rc -eq 0 ]] && same "gas at 2 ranks, resumed at 3 in the reflection" "$TMP/gas_half" \

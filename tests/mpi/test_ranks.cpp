@@ -241,8 +241,8 @@ TEST(Ranks, TheGasOutlinesNodesSharedAfterDecomposedStepsAreTheWholeStates) {
       outline_motion(whole.particles, gas_outlines(spec, whole.body_ranges));
   const OutlineMotion at_start =
       outline_motion(base.state().particles, gas_outlines(spec, whole.body_ranges));
-  const OutlineMotion shared =
-      shared_outline_motion(part, part_gas_outlines(spec, part.body_ranges, layout), world);
+  const OutlineMotion shared = shared_outline_motion(
+      part, part_gas_outlines(spec, part.local.loads, part.body_ranges, layout), world);
   ASSERT_EQ(shared.size(), 3u);  // the rod, the plate, the wall
   ASSERT_EQ(expected.size(), 3u);
   for (std::size_t o = 0; o < 3; ++o) {

@@ -398,9 +398,10 @@ void expect_the_gas_window_from_the_parts(const std::string& case_file, std::int
     std::vector<double> hosted;
     for (int r = 0; r < ranks; ++r) {
       parts.push_back(local_part(global, d, r));
-      append_hosted_outline_motion(
-          parts.back().state.particles,
-          part_gas_outlines(spec, parts.back().body_ranges, parts.back().layout), hosted);
+      append_hosted_outline_motion(parts.back().state.particles,
+                                   part_gas_outlines(spec, parts.back().state.loads,
+                                                     parts.back().body_ranges, parts.back().layout),
+                                   hosted);
     }
     const OutlineMotion shared = assemble_outline_motion(outlines, hosted);
     ASSERT_EQ(shared.size(), whole.size());
