@@ -8,13 +8,16 @@
 #include <variant>
 #include <vector>
 
+#include "src/solver/part_cut.hpp"
+
 namespace mpsolid {
 
 // What `run` and `resume` share: how the run steps, and the case overrides.
 struct SteppingOptions {
   int threads = 0;  // 0: OMP_NUM_THREADS if set, else every core
   bool fixed_threads = false;
-  std::vector<std::string> overrides;  // --set KEY=VALUE
+  std::vector<std::string> overrides;    // --set KEY=VALUE
+  CutChoice cut = CutChoice::automatic;  // --cut: how several MPI ranks cut the case
 };
 
 struct RunCommand {

@@ -122,7 +122,7 @@ int launch(const CommandLine& command_line, int* argc, char*** argv) {
   }
   // However rank 0 leaves, the followers are released (the destructor).
   std::optional<Followers> followers;
-  if (world.size() > 1) followers.emplace(world);
+  if (world.size() > 1) followers.emplace(world, stepping ? stepping->cut : CutChoice::automatic);
   if (study) return launch_study(study->arguments);
   return run_or_resume(command_line, threads, followers ? &*followers : nullptr);
 }

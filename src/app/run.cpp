@@ -250,6 +250,7 @@ void finish_run(Simulation& sim, RunFolder& outputs, RunFacts& facts, const RunO
   facts.thread_wait_seconds = team_wait_seconds() - facts.wait_at_start;
   facts.rank_times = sim.rank_times();
   facts.rank_zero_copy = sim.holds_particles();
+  facts.cut = sim.rank_cut();
   facts.thread_crossing = sim.thread_crossing();
   {
     auto t = sim.timers().time(Phase::output);

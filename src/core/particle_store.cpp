@@ -45,9 +45,9 @@ void ParticleStore::resize(std::size_t n) {
   for_each_particle_array(*this, [n](const auto& info, auto& v) { v.assign(n, info.initial); });
 }
 
-void ParticleStore::set_kind_ranges() {
+void ParticleStore::set_kind_ranges(std::size_t end) {
   const auto first_not = [&](std::size_t from, Kind k) {
-    while (from < size() && kind[from] == k) ++from;
+    while (from < end && kind[from] == k) ++from;
     return from;
   };
   const std::size_t walls_end = first_not(0, Kind::wall);
@@ -55,8 +55,7 @@ void ParticleStore::set_kind_ranges() {
   walls = {0, walls_end};
   elastic = {walls_end, elastic_end};
   rigid = {elastic_end, first_not(elastic_end, Kind::rigid)};
-  if (rigid.end != size())
-    throw std::logic_error("set_kind_ranges: kinds are not grouped in storage");
+  if (rigid.end != end) throw std::logic_error("set_kind_ranges: kinds are not grouped in storage");
 }
 
 std::vector<std::size_t> ParticleStore::storage_of_id() const {

@@ -104,9 +104,14 @@ struct ParticleStore {
 
   // Every array n values of its initial value.
   void resize(std::size_t n);
-  // The kind ranges (walls, elastic, rigid) from the kinds, which must be
-  // grouped in storage; an empty group sits at its neighbours' boundary.
-  void set_kind_ranges();
+  // The kind ranges (walls, elastic, rigid) from the kinds of [0, end),
+  // which must be grouped in storage; an empty group sits at its
+  // neighbours' boundary. (A rank's part in pieces holds its other ghosts
+  // after `end`, in no kind range.)
+  void set_kind_ranges() {
+    set_kind_ranges(size());
+  }
+  void set_kind_ranges(std::size_t end);
   // Storage index of each id (inverse of `id`).
   std::vector<std::size_t> storage_of_id() const;
 };

@@ -76,6 +76,13 @@ struct RankTimes {
   double slice_moves = 0, slice_bytes = 0;
 };
 
+// How a run over ranks is cut (src/solver/part_cut.hpp): "slabs" or
+// "bands along x" (y, z), with the ghosts each cut was estimated to imply.
+struct CutFacts {
+  std::string kind;
+  double slab_ghosts = 0, band_ghosts = 0;
+};
+
 // What crossed between the threads of a team stepping as ranks
 // (src/solver/thread_parts.hpp), for run.json's thread facts: per step and
 // summed over the threads, the values each named halo brought a thread from

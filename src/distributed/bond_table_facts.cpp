@@ -1,5 +1,6 @@
 #include "src/distributed/bond_table_facts.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -17,17 +18,43 @@ std::uint64_t read_bits(const std::vector<double>& in, std::size_t at) {
   return (static_cast<std::uint64_t>(in.at(at)) << 32) | static_cast<std::uint64_t>(in.at(at + 1));
 }
 
-// The hash going on from `value` through every rank's bytes in rank order:
-// rank r takes rank r - 1's value, adds its own and hands it on, in one
-// collective round per rank (every rank makes the same calls, as the
-// threads as ranks need); every rank gets the last rank's value.
-std::uint64_t hash_in_rank_order(const RankGroup& world, std::uint64_t value,
-                                 const std::function<void(Fnv1a&)>& add_mine) {
-  for (int turn = 0; turn < world.size(); ++turn) {
+// Every rank's owned pieces in storage order: each one's first storage
+// index, its rank, its place among that rank's pieces and its bond entries.
+struct PieceTurn {
+  double start, rank, index, entries;
+};
+std::vector<PieceTurn> pieces_in_order(const RankGroup& world, const std::vector<double>& entries,
+                                       const LocalLayout& layout) {
+  std::vector<double> mine{static_cast<double>(entries.size())};
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    mine.insert(mine.end(),
+                {static_cast<double>(layout.owned_pieces[k].begin),
+                 static_cast<double>(world.rank()), static_cast<double>(k), entries[k]});
+  const std::vector<double> all = world.all_gather(mine);
+  std::vector<PieceTurn> turns;
+  for (std::size_t at = 0; at < all.size();) {
+    const auto n = static_cast<std::size_t>(all[at++]);
+    for (std::size_t k = 0; k < n; ++k, at += 4)
+      turns.push_back({all[at], all[at + 1], all[at + 2], all[at + 3]});
+  }
+  std::stable_sort(turns.begin(), turns.end(),
+                   [](const PieceTurn& x, const PieceTurn& y) { return x.start < y.start; });
+  return turns;
+}
+
+// The hash going on from `value` through every piece's bytes in storage
+// order: the owner of each takes the value so far, adds the piece's bytes
+// and hands it on, in one collective round per piece (every rank makes the
+// same calls, as the threads as ranks need); every rank gets the last
+// value.
+std::uint64_t hash_in_piece_order(const RankGroup& world, const std::vector<PieceTurn>& turns,
+                                  std::uint64_t value,
+                                  const std::function<void(std::size_t, Fnv1a&)>& add_piece) {
+  for (const PieceTurn& turn : turns) {
     std::vector<double> mine;
-    if (turn == world.rank()) {
+    if (static_cast<int>(turn.rank) == world.rank()) {
       Fnv1a h(value);
-      add_mine(h);
+      add_piece(static_cast<std::size_t>(turn.index), h);
       append_bits(h.value(), mine);
     }
     value = read_bits(world.all_gather(mine), 0);
@@ -49,35 +76,46 @@ BondTableFacts BondTableFacts::read(const std::vector<double>& in, std::size_t& 
 
 BondTableFacts bond_table_facts(const BondTable& local, const LocalLayout& layout,
                                 const RankGroup& world) {
-  const Range owned = layout.owned;
-  const std::uint32_t first = owned.empty() ? 0 : local.begin(owned.begin);
-  const std::uint32_t end = owned.empty() ? 0 : local.begin(owned.end);
-  // The entries of the ranks before this one: where its rows start.
-  const std::vector<double> counts = world.all_gather({static_cast<double>(end - first)});
-  std::uint64_t before = 0, total = 0;
-  for (int k = 0; k < world.size(); ++k) {
-    const auto n = static_cast<std::uint64_t>(counts[static_cast<std::size_t>(k)]);
-    if (k < world.rank()) before += n;
-    total += n;
+  // Each owned piece's rows: local [row_begin, row_end), entries [first, end).
+  const std::size_t pieces = layout.owned_pieces.size();
+  std::vector<std::size_t> row_begin(pieces), row_end(pieces);
+  std::vector<double> entries(pieces);
+  for (std::size_t k = 0; k < pieces; ++k) {
+    row_begin[k] = layout.piece_local[k];
+    row_end[k] = row_begin[k] + layout.owned_pieces[k].size();
+    entries[k] = static_cast<double>(local.begin(row_end[k]) - local.begin(row_begin[k]));
   }
-  const bool last = world.rank() == world.size() - 1;
+  const std::vector<PieceTurn> turns = pieces_in_order(world, entries, layout);
+  // The entries before each of this rank's pieces, and in all.
+  std::vector<std::uint64_t> before(pieces, 0);
+  std::uint64_t total = 0;
+  for (const PieceTurn& t : turns) {
+    if (static_cast<int>(t.rank) == world.rank()) before[static_cast<std::size_t>(t.index)] = total;
+    total += static_cast<std::uint64_t>(t.entries);
+  }
+  const bool has_last = !turns.empty() && static_cast<int>(turns.back().rank) == world.rank();
+  const std::size_t last = has_last ? static_cast<std::size_t>(turns.back().index) : pieces;
   std::uint64_t h = Fnv1a().value();
-  // offsets: each owned row's start, and after the last rank's rows the end.
-  h = hash_in_rank_order(world, h, [&](Fnv1a& f) {
-    for (std::size_t i = owned.begin; i < owned.end; ++i)
-      f.value(static_cast<std::uint32_t>(before + (local.begin(i) - first)));
-    if (last) f.value(static_cast<std::uint32_t>(total));
+  // offsets: each owned row's start, and after the last piece's rows the end.
+  h = hash_in_piece_order(world, turns, h, [&](std::size_t k, Fnv1a& f) {
+    const std::uint32_t first = local.begin(row_begin[k]);
+    for (std::size_t i = row_begin[k]; i < row_end[k]; ++i)
+      f.value(static_cast<std::uint32_t>(before[k] + (local.begin(i) - first)));
+    if (k == last) f.value(static_cast<std::uint32_t>(total));
   });
   // neighbor: global storage indices.
-  h = hash_in_rank_order(world, h, [&](Fnv1a& f) {
-    for (std::uint32_t k = first; k < end; ++k) f.value(layout.global_of[local.neighbor[k]]);
+  h = hash_in_piece_order(world, turns, h, [&](std::size_t k, Fnv1a& f) {
+    for (std::uint32_t e = local.begin(row_begin[k]); e < local.begin(row_end[k]); ++e)
+      f.value(layout.global_of[local.neighbor[e]]);
   });
   // In space (a rank with no bond has no r0z to tell it).
   const bool space = world.max(local.r0z.empty() ? 0 : 1) == 1;
   for (const std::vector<double>* v : {&local.r0x, &local.r0y, &local.r0z}) {
     if (v == &local.r0z && !space) break;  // the plane's hash as it always was
-    h = hash_in_rank_order(
-        world, h, [&](Fnv1a& f) { f.bytes(v->data() + first, (end - first) * sizeof(double)); });
+    h = hash_in_piece_order(world, turns, h, [&](std::size_t k, Fnv1a& f) {
+      const std::uint32_t first = local.begin(row_begin[k]), end = local.begin(row_end[k]);
+      f.bytes(v->data() + first, (end - first) * sizeof(double));
+    });
   }
   return {static_cast<std::size_t>(total / 2), h};
 }

@@ -2,9 +2,9 @@
 // What the outputs record of the whole bond table (its bond count and its
 // hash, BondTable::hash, which a checkpoint keeps to refuse a resume with
 // another table) from the ranks' parts, where no rank holds the table: each
-// rank's owned rows are whole and in global order, so the ranks hash them
-// one after the other, array by array, each going on from the previous
-// rank's value: the whole table's bits.
+// rank's owned rows are whole and in global order, so the ranks hash the
+// pieces of the cut one after the other in storage order, array by array,
+// each going on from the previous piece's value: the whole table's bits.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -7,9 +7,66 @@
 namespace mpsolid {
 
 int Decomposition::owner_of(std::size_t i) const {
-  // The last rank whose range starts at or before i (empty ranges share a start).
+  // The last piece that starts at or before i (empty pieces share a start).
   const auto after = std::upper_bound(starts.begin(), starts.end() - 1, i);
-  return static_cast<int>(after - starts.begin()) - 1;
+  const auto piece = static_cast<std::size_t>(after - starts.begin()) - 1;
+  return owners.empty() ? static_cast<int>(piece) : owners[piece];
+}
+
+Range Decomposition::owned(int rank) const {
+  if (!owners.empty()) throw std::logic_error("Decomposition::owned: a cut in pieces, not slabs");
+  return {starts[static_cast<std::size_t>(rank)], starts[static_cast<std::size_t>(rank) + 1]};
+}
+
+std::vector<Range> Decomposition::pieces(int rank) const {
+  if (owners.empty()) return {owned(rank)};
+  std::vector<Range> out;
+  for (std::size_t k = 0; k < owners.size(); ++k)
+    if (owners[k] == rank) out.push_back({starts[k], starts[k + 1]});
+  return out;
+}
+
+std::vector<std::vector<Range>> Decomposition::pieces_by_rank() const {
+  std::vector<std::vector<Range>> out(static_cast<std::size_t>(ranks()));
+  for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+    out[static_cast<std::size_t>(owners.empty() ? static_cast<int>(k) : owners[k])].push_back(
+        {starts[k], starts[k + 1]});
+  return out;
+}
+
+Decomposition decomposition_in_pieces(std::vector<std::size_t> starts, std::vector<int> owners,
+                                      int ranks) {
+  if (starts.size() != owners.size() + 1 || ranks < 1)
+    throw std::invalid_argument("decomposition_in_pieces: a start per piece and one more");
+  Decomposition d;
+  d.rank_count = ranks;
+  d.starts.push_back(starts.front());
+  for (std::size_t k = 0; k < owners.size(); ++k) {
+    if (owners[k] < 0 || owners[k] >= ranks)
+      throw std::invalid_argument("decomposition_in_pieces: a piece's rank out of range");
+    if (starts[k + 1] < starts[k])
+      throw std::invalid_argument("decomposition_in_pieces: pieces out of order");
+    if (starts[k + 1] == starts[k]) continue;
+    if (!d.owners.empty() && d.owners.back() == owners[k])
+      d.starts.back() = starts[k + 1];
+    else {
+      d.owners.push_back(owners[k]);
+      d.starts.push_back(starts[k + 1]);
+    }
+  }
+  // Slabs when each rank owns at most one piece, in rank order.
+  bool slabs = true;
+  for (std::size_t k = 0; k + 1 < d.owners.size(); ++k)
+    slabs = slabs && d.owners[k] < d.owners[k + 1];
+  if (!slabs) return d;
+  Decomposition s;
+  std::size_t at = d.starts.front(), k = 0;
+  for (int r = 0; r < ranks; ++r) {
+    s.starts.push_back(at);
+    if (k < d.owners.size() && d.owners[k] == r) at = d.starts[++k];
+  }
+  s.starts.push_back(at);
+  return s;
 }
 
 std::vector<double> particle_work(const BondTable& bonds) {
@@ -67,17 +124,17 @@ Decomposition decompose_count(std::size_t particles, int ranks,
 
 HaloPlan plan_halo(const BondTable& bonds, const Decomposition& d, int rank) {
   HaloPlan plan;
-  const Range mine = d.owned(rank);
   std::map<int, std::vector<std::uint32_t>> receive, send;
   std::vector<std::uint32_t> ghosts;
-  for (std::size_t i = mine.begin; i < mine.end; ++i)
-    for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-      const std::uint32_t j = bonds.neighbor[k];
-      if (j >= mine.begin && j < mine.end) continue;
-      ghosts.push_back(j);
-      // The bond table is symmetric: j's owner needs i as a ghost too.
-      send[d.owner_of(j)].push_back(static_cast<std::uint32_t>(i));
-    }
+  for (const Range mine : d.pieces(rank))
+    for (std::size_t i = mine.begin; i < mine.end; ++i)
+      for (std::uint32_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+        const std::uint32_t j = bonds.neighbor[k];
+        if ((j >= mine.begin && j < mine.end) || d.owner_of(j) == rank) continue;
+        ghosts.push_back(j);
+        // The bond table is symmetric: j's owner needs i as a ghost too.
+        send[d.owner_of(j)].push_back(static_cast<std::uint32_t>(i));
+      }
   const auto unique_sorted = [](std::vector<std::uint32_t>& v) {
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());

@@ -1,11 +1,13 @@
 #pragma once
 // Which rank owns which particles, and the halo each rank needs (docs/mpi.md).
 //
-// A rank owns a contiguous range of storage indices, cut anywhere: the
-// global sums take each rank's share of the serial chunks
+// Storage is cut into pieces, each a contiguous range of storage indices
+// owned by one rank. Slabs give each rank one piece; a cut across a body's
+// rows (src/solver/part_cut.hpp) gives a rank one piece per row it crosses.
+// Either way the global sums take each piece's share of the serial chunks
 // (src/distributed/ordered_sum_parts.hpp), which gives the serial bits at
-// any cut. The ranges are balanced by work (bond entries plus particles).
-// Storage is row by row within each body, so a range is a slab of rows.
+// any cut. Slabs are balanced by work (bond entries plus particles).
+// Storage is row by row within each body, so a slab is a slab of rows.
 //
 // A rank's ghosts are the particles its owned particles are bonded to and
 // it does not own: the gathers of an owned particle read only its own
@@ -20,14 +22,31 @@
 namespace mpsolid {
 
 struct Decomposition {
-  std::vector<std::size_t> starts;  // rank r owns [starts[r], starts[r + 1])
+  // Piece k is [starts[k], starts[k + 1]), owned by owners[k]; without
+  // owners, piece r is rank r's (slabs).
+  std::vector<std::size_t> starts;
+  std::vector<int> owners;
+  int rank_count = 0;  // with owners: the ranks (one may own no piece)
 
-  int ranks() const { return static_cast<int>(starts.size()) - 1; }
-  Range owned(int rank) const {
-    return {starts[static_cast<std::size_t>(rank)], starts[static_cast<std::size_t>(rank) + 1]};
-  }
+  int ranks() const { return owners.empty() ? static_cast<int>(starts.size()) - 1 : rank_count; }
+  bool slabs() const { return owners.empty(); }
+  std::size_t particles() const { return starts.empty() ? 0 : starts.back(); }
+  // A slab's one range (a cut in pieces: std::logic_error).
+  Range owned(int rank) const;
+  // The rank's pieces, ascending (a slab: its one range, perhaps empty).
+  std::vector<Range> pieces(int rank) const;
+  // Every rank's pieces (one pass over the cut).
+  std::vector<std::vector<Range>> pieces_by_rank() const;
   int owner_of(std::size_t i) const;
+  bool operator==(const Decomposition&) const = default;
 };
+
+// The cut whose piece k is [starts[k], starts[k + 1]) owned by owners[k]
+// over `ranks` ranks; neighbouring pieces of one rank are merged, empty
+// ones dropped, and a cut that is slabs (rank r's piece r-th) is given as
+// slabs.
+Decomposition decomposition_in_pieces(std::vector<std::size_t> starts, std::vector<int> owners,
+                                      int ranks);
 
 // Contiguous ranges over the bond table's particles for `ranks` ranks,
 // balanced by bond entries + particles to within a particle's work. A rank

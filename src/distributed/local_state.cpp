@@ -7,10 +7,74 @@
 
 namespace mpsolid {
 
+void LocalLayout::set_owned_pieces(std::vector<Range> pieces) {
+  owned_pieces = std::move(pieces);
+  piece_local.clear();
+  std::size_t at = owned.begin;
+  for (const Range r : owned_pieces) {
+    piece_local.push_back(at);
+    at += r.size();
+  }
+  if (at != owned.end) throw std::logic_error("LocalLayout: the owned pieces do not fill it");
+}
+
+Range LocalLayout::owned_hull() const {
+  if (owned_pieces.empty()) return {};
+  return {owned_pieces.front().begin, owned_pieces.back().end};
+}
+
+namespace {
+// The owned piece at or before `global` (its index; pieces.size() when none).
+std::size_t piece_at(const std::vector<Range>& pieces, std::size_t global) {
+  const auto after = std::upper_bound(pieces.begin(), pieces.end(), global,
+                                      [](std::size_t g, Range r) { return g < r.begin; });
+  return after == pieces.begin() ? pieces.size()
+                                 : static_cast<std::size_t>(after - pieces.begin()) - 1;
+}
+}  // namespace
+
+bool LocalLayout::owns(std::size_t global) const {
+  const std::size_t k = piece_at(owned_pieces, global);
+  return k < owned_pieces.size() && global < owned_pieces[k].end;
+}
+
+std::size_t LocalLayout::local_of_owned(std::size_t global) const {
+  if (owned_pieces.size() == 1) return owned.begin + (global - owned_pieces.front().begin);
+  const std::size_t k = piece_at(owned_pieces, global);
+  return piece_local[k] + (global - owned_pieces[k].begin);
+}
+
+Range LocalLayout::owned_within(Range global) const {
+  // The local index of the first owned particle at or after g.
+  const auto first_at = [&](std::size_t g) {
+    const std::size_t k = piece_at(owned_pieces, g);
+    if (k == owned_pieces.size()) return owned.begin;
+    const Range r = owned_pieces[k];
+    return piece_local[k] + (std::min(g, r.end) - r.begin);
+  };
+  if (global.empty()) return {first_at(global.begin), first_at(global.begin)};
+  return {first_at(global.begin), first_at(global.end)};
+}
+
+Range LocalLayout::global_of_owned(Range local) const {
+  const auto after = std::upper_bound(piece_local.begin(), piece_local.end(), local.begin);
+  const std::size_t k =
+      after == piece_local.begin() ? 0 : static_cast<std::size_t>(after - piece_local.begin()) - 1;
+  const std::size_t shift = owned_pieces.at(k).begin - piece_local[k];
+  return {local.begin + shift, local.end + shift};
+}
+
 std::int64_t LocalLayout::find(std::size_t global) const {
-  const auto at = std::lower_bound(global_of.begin(), global_of.end(), global);
-  if (at == global_of.end() || *at != global) return -1;
-  return at - global_of.begin();
+  // Each of the three parts is ascending.
+  const auto in = [&](std::size_t from, std::size_t to) -> std::int64_t {
+    const auto first = global_of.begin() + static_cast<long>(from);
+    const auto last = global_of.begin() + static_cast<long>(to);
+    const auto at = std::lower_bound(first, last, global);
+    return at != last && *at == global ? at - global_of.begin() : -1;
+  };
+  if (owns(global)) return static_cast<std::int64_t>(local_of_owned(global));
+  const std::int64_t below = in(0, owned.begin);
+  return below >= 0 ? below : in(owned.end, global_of.size());
 }
 
 std::size_t LocalLayout::local_of(std::uint32_t global) const {
@@ -22,19 +86,21 @@ std::size_t LocalLayout::local_of(std::uint32_t global) const {
 LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
                          const std::vector<std::uint32_t>& also) {
   LocalLayout layout;
-  const Range mine = d.owned(rank);
-  layout.owned_global = mine;
+  const std::vector<Range> pieces = d.pieces(rank);
   std::vector<std::uint32_t> others;  // not owned: ghosts and `also`
   std::set_union(halo.ghosts.begin(), halo.ghosts.end(), also.begin(), also.end(),
                  std::back_inserter(others));
-  std::erase_if(others, [&](std::uint32_t g) { return g >= mine.begin && g < mine.end; });
-  const auto below = std::lower_bound(others.begin(), others.end(), mine.begin);
+  std::erase_if(others, [&](std::uint32_t g) { return d.owner_of(g) == rank; });
+  const std::size_t first = pieces.empty() ? d.particles() : pieces.front().begin;
+  const auto below = std::lower_bound(others.begin(), others.end(), first);
   layout.global_of.assign(others.begin(), below);
   layout.owned.begin = layout.global_of.size();
-  for (std::size_t i = mine.begin; i < mine.end; ++i)
-    layout.global_of.push_back(static_cast<std::uint32_t>(i));
+  for (const Range r : pieces)
+    for (std::size_t i = r.begin; i < r.end; ++i)
+      layout.global_of.push_back(static_cast<std::uint32_t>(i));
   layout.owned.end = layout.global_of.size();
   layout.global_of.insert(layout.global_of.end(), below, others.end());
+  layout.set_owned_pieces(pieces);
   return layout;
 }
 
@@ -48,22 +114,25 @@ ParticleStore local_particles(const ParticleStore& global, const LocalLayout& la
       if (info.present_in(p.dimension)) (p.*member)[k] = (global.*member)[g];
     });
   }
-  p.set_kind_ranges();
+  // Kinds are grouped up to the owned particles' end (everything below is
+  // in global order); in one slab the ghosts above follow on.
+  if (layout.owned_pieces.size() > 1)
+    p.set_kind_ranges(layout.owned.end);
+  else
+    p.set_kind_ranges();
   return p;
 }
 
 BondTable local_bonds(const BondTable& global, const ParticleStore& local,
                       const LocalLayout& layout) {
   std::vector<std::uint32_t> offsets(layout.size() + 1, 0), neighbor;
-  const auto is_owned = [&](std::uint32_t g) {
-    return g >= layout.owned_global.begin && g < layout.owned_global.end;
-  };
   for (std::size_t k = 0; k < layout.size(); ++k) {
     const std::size_t g = layout.global_of[k];
     const bool whole = k >= layout.owned.begin && k < layout.owned.end;
     for (std::uint32_t b = global.begin(g); b < global.end(g); ++b) {
       const std::uint32_t j = global.neighbor[b];
-      if (whole || is_owned(j)) neighbor.push_back(static_cast<std::uint32_t>(layout.local_of(j)));
+      if (whole || layout.owns(j))
+        neighbor.push_back(static_cast<std::uint32_t>(layout.local_of(j)));
     }
     offsets[k + 1] = static_cast<std::uint32_t>(neighbor.size());
   }
@@ -75,14 +144,10 @@ namespace {
 // not held at all, or split (refused).
 enum class Ownership { owned, elsewhere, split };
 Ownership ownership(Range global, const LocalLayout& layout) {
-  const Range mine = layout.owned_global;
-  if (global.begin >= mine.begin && global.end <= mine.end) return Ownership::owned;
-  if (global.end <= mine.begin || global.begin >= mine.end) return Ownership::elsewhere;
-  return Ownership::split;
-}
-Range to_local(Range global, const LocalLayout& layout) {
-  const std::size_t shift = layout.owned_global.begin - layout.owned.begin;
-  return {global.begin - shift, global.end - shift};
+  if (global.empty()) return layout.owns(global.begin) ? Ownership::owned : Ownership::elsewhere;
+  const std::size_t held = layout.owned_within(global).size();
+  if (held == global.size()) return Ownership::owned;
+  return held == 0 ? Ownership::elsewhere : Ownership::split;
 }
 
 // The items (rigid bodies, loads) whose particles this rank owns, in local
@@ -98,7 +163,7 @@ std::vector<Item> owned_items(const std::vector<Item>& items, const LocalLayout&
                                   "' is split between ranks: not supported yet (docs/mpi.md)");
     if (o == Ownership::elsewhere) continue;
     kept.push_back(item);
-    kept.back().range = to_local(item.range, layout);
+    kept.back().range = layout.owned_within(item.range);
   }
   return kept;
 }
@@ -133,9 +198,8 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
     s.loads.push_back(std::move(local));
   }
   for (const HeldRange& hold : global.holds) {
-    const Range mine = layout.owned_global;
-    const Range part{std::max(hold.range.begin, mine.begin), std::min(hold.range.end, mine.end)};
-    if (part.begin < part.end) s.holds.push_back({to_local(part, layout), hold.x, hold.y, hold.z});
+    const Range part = layout.owned_within(hold.range);
+    if (!part.empty()) s.holds.push_back({part, hold.x, hold.y, hold.z});
   }
   // Every candidate of the run (the layout must hold them all); the list is
   // the decomposed step's to build.

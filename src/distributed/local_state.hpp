@@ -18,30 +18,46 @@
 namespace mpsolid {
 
 struct LocalLayout {
-  std::vector<std::uint32_t> global_of;  // local index -> global storage index, ascending
-  Range owned;                           // the owned particles' local range
-  Range owned_global;                    // ... and their global storage range
+  // Local index -> global storage index: the ghosts below every owned
+  // particle, the owned particles, the other ghosts, each ascending (one
+  // slab: all of it ascending).
+  std::vector<std::uint32_t> global_of;
+  Range owned;  // the owned particles' local range
+  // ... and their global storage ranges (one per piece of the cut),
+  // ascending, with the local index of each one's first particle.
+  std::vector<Range> owned_pieces;
+  std::vector<std::size_t> piece_local;
 
   std::size_t size() const { return global_of.size(); }
-  // The local index of an owned particle's global storage index (owned
-  // particles are contiguous in both: a shift).
-  std::size_t local_of_owned(std::size_t global) const {
-    return owned.begin + (global - owned_global.begin);
-  }
+  // Sets the owned pieces (their particles are owned.begin on, in order).
+  void set_owned_pieces(std::vector<Range> pieces);
+  // The owned pieces' hull (one slab: its range).
+  Range owned_hull() const;
+  bool owns(std::size_t global) const;
+  // The local index of an owned particle's global storage index.
+  std::size_t local_of_owned(std::size_t global) const;
+  // The local range of the owned particles of a global range (contiguous:
+  // the owned particles keep their global order).
+  Range owned_within(Range global) const;
+  // The global range of owned particles `local` that one piece holds (an
+  // item kept whole).
+  Range global_of_owned(Range local) const;
   // The local index of a global storage index this rank holds.
   std::size_t local_of(std::uint32_t global) const;
   // The same, or -1 when this rank does not hold it.
   std::int64_t find(std::size_t global) const;
 };
 
-// Owned particles and ghosts, merged in global order, with the particles of
-// `also` (global storage indices, ascending: every contact candidate of the
-// run) that are neither.
+// Owned particles and ghosts (as global_of orders them), with the particles
+// of `also` (global storage indices, ascending: every contact candidate of
+// the run) that are neither among the ghosts.
 LocalLayout local_layout(const Decomposition& d, const HaloPlan& halo, int rank,
                          const std::vector<std::uint32_t>& also = {});
 
-// The layout's particles, every array copied, the kind ranges recomputed
-// (storage is grouped by kind, and the global order is kept).
+// The layout's particles, every array copied, the kind ranges those of the
+// owned particles (storage is grouped by kind, and the owned particles keep
+// the global order; in one slab the ghosts do too, and the kind ranges
+// cover them).
 ParticleStore local_particles(const ParticleStore& global, const LocalLayout& layout);
 
 // The layout's bond table in local indices: whole rows for owned

@@ -247,9 +247,11 @@ void pack_local_part(const LocalPart& part,
                      const std::function<void(const std::vector<double>&)>& send) {
   Writer w(send);
   w.put(part.decomposition.starts);
+  w.put(part.decomposition.owners);
+  w.put(static_cast<double>(part.decomposition.rank_count));
   w.put(part.layout.global_of);
   w.put(part.layout.owned);
-  w.put(part.layout.owned_global);
+  put_items(w, part.layout.owned_pieces, [](Writer& o, Range range) { o.put(range); });
   w.put(static_cast<double>(part.moving_begin));
   put_items(w, part.body_ranges, [](Writer& o, Range range) { o.put(range); });
   w.put(part.probes);
@@ -288,9 +290,11 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   Reader r(receive);
   LocalPart part;
   part.decomposition.starts = r.get_vector<std::size_t>();
+  part.decomposition.owners = r.get_vector<int>();
+  part.decomposition.rank_count = r.get_as<int>();
   part.layout.global_of = r.get_vector<std::uint32_t>();
   part.layout.owned = r.get_range();
-  part.layout.owned_global = r.get_range();
+  part.layout.set_owned_pieces(get_items<Range>(r, [](Reader& in) { return in.get_range(); }));
   part.moving_begin = r.get_as<std::size_t>();
   part.body_ranges = get_items<Range>(r, [](Reader& in) { return in.get_range(); });
   part.probes = r.get_vector<std::size_t>();
@@ -336,13 +340,6 @@ LocalPart unpack_local_part(const std::function<std::vector<double>()>& receive)
   return part;
 }
 
-namespace {
-Range to_global(Range local, const LocalLayout& layout) {
-  return {layout.owned_global.begin + (local.begin - layout.owned.begin),
-          layout.owned_global.begin + (local.end - layout.owned.begin)};
-}
-}  // namespace
-
 void append_owned_items(const SolverState& local, const LocalLayout& layout,
                         std::vector<double>& out) {
   // The pieces, each after its length (the last one short, perhaps empty).
@@ -352,14 +349,14 @@ void append_owned_items(const SolverState& local, const LocalLayout& layout,
   };
   Writer w(send);
   put_items(w, local.rigid_bodies, [&](Writer& to, RigidBody b) {
-    b.range = to_global(b.range, layout);
+    b.range = layout.global_of_owned(b.range);
     put_body(to, b);
   });
   std::vector<StepLoad> forces;
   for (const StepLoad& l : local.loads)
     if (!l.is_pressure()) forces.push_back(l);
   put_items(w, forces, [&](Writer& to, StepLoad l) {
-    l.range = to_global(l.range, layout);
+    l.range = layout.global_of_owned(l.range);
     put_load(to, l);
   });
   w.finish();

@@ -46,17 +46,22 @@ void write_fields(StepLoad& l, const double* in) {
 }
 
 // Whether a slice of `owned` carries the item: a rigid body or a force
-// when the range owns it whole; a pressure when the slice carries the
-// shared items (every part holds it, with the same running step).
-bool carries(const RigidBody& b, Range owned, bool) {
-  return b.range.begin >= owned.begin && b.range.end <= owned.end;
+// when one of its ranges holds it whole (it is kept whole); a pressure when
+// the slice carries the shared items (every part holds it, with the same
+// running step).
+bool holds(Range item, const std::vector<Range>& owned) {
+  return std::any_of(owned.begin(), owned.end(),
+                     [&](Range r) { return item.begin >= r.begin && item.end <= r.end; });
 }
-bool carries(const StepLoad& l, Range owned, bool shared) {
-  return l.is_pressure() ? shared : l.range.begin >= owned.begin && l.range.end <= owned.end;
+bool carries(const RigidBody& b, const std::vector<Range>& owned, bool) {
+  return holds(b.range, owned);
+}
+bool carries(const StepLoad& l, const std::vector<Range>& owned, bool shared) {
+  return l.is_pressure() ? shared : holds(l.range, owned);
 }
 
 template <class Item>
-void append_items(const std::vector<Item>& items, Range owned, bool shared,
+void append_items(const std::vector<Item>& items, const std::vector<Range>& owned, bool shared,
                   std::vector<double>& out) {
   for (const Item& item : items) {
     if (!carries(item, owned, shared)) continue;
@@ -65,8 +70,8 @@ void append_items(const std::vector<Item>& items, Range owned, bool shared,
   }
 }
 template <class Item>
-void read_items(std::vector<Item>& items, Range owned, bool shared, const std::vector<double>& in,
-                std::size_t& at) {
+void read_items(std::vector<Item>& items, const std::vector<Range>& owned, bool shared,
+                const std::vector<double>& in, std::size_t& at) {
   for (Item& item : items) {
     if (!carries(item, owned, shared)) continue;
     write_fields(item, in.data() + at);
@@ -75,35 +80,38 @@ void read_items(std::vector<Item>& items, Range owned, bool shared, const std::v
 }
 }  // namespace
 
-void StateSlice::append(const SolverState& state, Range owned, std::vector<double>& out,
-                        bool shared) {
+void StateSlice::append(const SolverState& state, const std::vector<Range>& owned,
+                        std::vector<double>& out, bool shared) {
   for (const StateArray& a : state_arrays(state.particles.dimension)) {
     const std::vector<double>& v = state.particles.*a.member;
-    out.insert(out.end(), v.begin() + static_cast<long>(owned.begin),
-               v.begin() + static_cast<long>(owned.end));
+    for (const Range r : owned)
+      out.insert(out.end(), v.begin() + static_cast<long>(r.begin),
+                 v.begin() + static_cast<long>(r.end));
   }
   append_items(state, owned, out, shared);
 }
 
-void StateSlice::append_items(const SolverState& state, Range owned, std::vector<double>& out,
-                              bool shared) {
+void StateSlice::append_items(const SolverState& state, const std::vector<Range>& owned,
+                              std::vector<double>& out, bool shared) {
   mpsolid::append_items(state.rigid_bodies, owned, shared, out);
   mpsolid::append_items(state.loads, owned, shared, out);
 }
 
-void StateSlice::read_items(SolverState& state, Range owned, const std::vector<double>& in,
-                            std::size_t& at, bool shared) {
+void StateSlice::read_items(SolverState& state, const std::vector<Range>& owned,
+                            const std::vector<double>& in, std::size_t& at, bool shared) {
   mpsolid::read_items(state.rigid_bodies, owned, shared, in, at);
   mpsolid::read_items(state.loads, owned, shared, in, at);
 }
 
-void StateSlice::read(SolverState& state, Range owned, const std::vector<double>& in,
-                      std::size_t& at, bool shared) {
+void StateSlice::read(SolverState& state, const std::vector<Range>& owned,
+                      const std::vector<double>& in, std::size_t& at, bool shared) {
   for (const StateArray& a : state_arrays(state.particles.dimension)) {
     std::vector<double>& v = state.particles.*a.member;
-    std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
-                v.begin() + static_cast<long>(owned.begin));
-    at += owned.size();
+    for (const Range r : owned) {
+      std::copy_n(in.begin() + static_cast<long>(at), r.size(),
+                  v.begin() + static_cast<long>(r.begin));
+      at += r.size();
+    }
   }
   read_items(state, owned, in, at, shared);
 }

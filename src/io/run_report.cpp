@@ -78,6 +78,10 @@ Json thread_facts_json(const RunFacts& facts) {
   if (!facts.rank_times.empty()) {
     facts_json["per_rank"] = ranks_json(facts.rank_times, "rank");
     facts_json["rank_zero_copy"] = facts.rank_zero_copy ? "whole" : "none";
+    if (!facts.cut.kind.empty())
+      facts_json["cut"] = {{"kind", facts.cut.kind},
+                           {"estimated_ghosts",
+                            {{"slabs", facts.cut.slab_ghosts}, {"bands", facts.cut.band_ghosts}}}};
   }
   // With several threads on one process, stepping as ranks: what crossed
   // between them per step (summed over the threads; each rendezvous reads

@@ -38,6 +38,7 @@ struct RunFacts {
   // Over several ranks, whether rank 0 held a copy of the particles and
   // bonds ("whole") or only the bodies, loads and probes ("none").
   bool rank_zero_copy = true;
+  CutFacts cut;  // how the case is cut over the ranks
   // The threads stepping as ranks on one process (threads = 0: none did).
   ThreadCrossing thread_crossing;
   std::int64_t steps = 0;  // steps advanced in this run

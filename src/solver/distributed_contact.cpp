@@ -89,6 +89,10 @@ LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const 
 RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
                               const Decomposition& d, const LocalHalo& bond_halo) {
   RankContact rc;
+  // The ranks' candidates in rank order are in candidate order only when
+  // each rank owns one storage range.
+  if (s.contact.enabled() && !d.slabs())
+    throw std::invalid_argument("contact over ranks needs a cut in slabs");
   rc.decomposition = d;
   const ParticleStore& p = s.particles;
   const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),

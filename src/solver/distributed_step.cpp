@@ -108,7 +108,7 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
         }
         // The owned range's share of the serial chunks (a cut may fall
         // inside one).
-        ordered_sum_part<1>(0, part.particles_in_run, layout.owned_global, [&](std::size_t g) {
+        ordered_sum_part<1>(0, part.particles_in_run, layout.owned_pieces, [&](std::size_t g) {
           return std::array<double, 1>{
               model.particle_strain_energy(p, s.bonds, layout.local_of_owned(g))};
         }).append_to(out);
@@ -123,15 +123,17 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
       part.model);
 }
 
-void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
-                      ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
-                      RankFields& fields, bool arrays) {
+void read_rank_fields(const std::vector<double>& in, std::size_t& at,
+                      const std::vector<Range>& owned, ParticleStore& global,
+                      std::vector<OrderedSumPart<1>>& energy_parts, RankFields& fields,
+                      bool arrays) {
   if (arrays)
-    for (std::vector<double>* field : {&global.strain, &global.pressure}) {
-      std::copy_n(in.begin() + static_cast<long>(at), owned.size(),
-                  field->begin() + static_cast<long>(owned.begin));
-      at += owned.size();
-    }
+    for (std::vector<double>* field : {&global.strain, &global.pressure})
+      for (const Range r : owned) {
+        std::copy_n(in.begin() + static_cast<long>(at), r.size(),
+                    field->begin() + static_cast<long>(r.begin));
+        at += r.size();
+      }
   energy_parts.push_back(OrderedSumPart<1>::read(in, at));
   IntegrityReport r;
   r.value = in[at++];
@@ -141,7 +143,10 @@ void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owne
   r.criterion.resize(static_cast<std::size_t>(in[at++]));
   for (char& c : r.criterion) c = static_cast<char>(in[at++]);
   // The first smallest in storage order, as the serial scan finds it.
-  if (!owned.empty() && (fields.integrity.criterion.empty() || r.value < fields.integrity.value))
+  const IntegrityReport& worst = fields.integrity;
+  const bool any = std::any_of(owned.begin(), owned.end(), [](Range o) { return !o.empty(); });
+  if (any && (worst.criterion.empty() || r.value < worst.value ||
+              (r.value == worst.value && r.particle < worst.particle)))
     fields.integrity = r;
 }
 

@@ -157,12 +157,13 @@ struct RankFields {
   IntegrityReport integrity;  // the worst over the ranks (the first on ties)
 };
 // Reads one rank's fields (as append_rank_fields wrote them from `owned`,
-// the rank's global storage range) into the whole state's strain and
+// the rank's global storage ranges) into the whole state's strain and
 // pressure, its part of the strain energy onto `energy_parts`, and its
 // integrity report into `fields` when worse.
-void read_rank_fields(const std::vector<double>& in, std::size_t& at, Range owned,
-                      ParticleStore& global, std::vector<OrderedSumPart<1>>& energy_parts,
-                      RankFields& fields, bool arrays = true);
+void read_rank_fields(const std::vector<double>& in, std::size_t& at,
+                      const std::vector<Range>& owned, ParticleStore& global,
+                      std::vector<OrderedSumPart<1>>& energy_parts, RankFields& fields,
+                      bool arrays = true);
 
 // The cut of the set-up state `global` over `ranks`, rigid bodies and
 // bodies under a force kept whole, balancing `cost` per particle (null:

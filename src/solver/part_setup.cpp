@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -16,11 +17,24 @@
 namespace mpsolid {
 
 namespace {
-bool overlaps(Range a, Range b) {
-  return a.begin < b.end && b.begin < a.end;
+// How many particles of `r` the pieces `mine` (ascending) hold.
+std::size_t held_of(Range r, const std::vector<Range>& mine) {
+  std::size_t n = 0;
+  for (const Range m : mine)
+    if (std::max(r.begin, m.begin) < std::min(r.end, m.end))
+      n += std::min(r.end, m.end) - std::max(r.begin, m.begin);
+  return n;
 }
-bool inside(Range a, Range b) {
-  return a.begin >= b.begin && a.end <= b.end;
+bool overlaps(Range a, const std::vector<Range>& mine) {
+  return held_of(a, mine) > 0;
+}
+bool inside(Range a, const std::vector<Range>& mine) {
+  return held_of(a, mine) == a.size();
+}
+bool in_pieces(std::size_t g, const std::vector<Range>& mine) {
+  const auto after = std::upper_bound(mine.begin(), mine.end(), g,
+                                      [](std::size_t i, Range m) { return i < m.begin; });
+  return after != mine.begin() && g < std::prev(after)->end;
 }
 
 // A site the part holds: its global storage index, body and place in the
@@ -30,14 +44,15 @@ struct HeldSite {
   Point3 at;
 };
 
-// The sites of the owned range `mine`, every site within `reach` of the
+// The sites of the owned pieces `mine`, every site within `reach` of the
 // box of the owned sites of one body and the sites `also` (global storage
 // indices, ascending), in global storage order. A bond joins sites closer
 // than the reach, so every partner of an owned site lies within reach of
 // its body's box; one box per body keeps a small body that spans the case
 // (a wall, a plate) from pulling in every site beside it.
-std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout, Range mine,
-                                 double reach, const std::vector<std::uint32_t>& also) {
+std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout,
+                                 const std::vector<Range>& mine, double reach,
+                                 const std::vector<std::uint32_t>& also) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   struct Box {
     std::array<double, 3> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
@@ -49,7 +64,7 @@ std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout,
     Box& box = boxes.emplace_back();
     visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
       const std::size_t g = r.begin + k;
-      if (g < mine.begin || g >= mine.end) return;
+      if (!in_pieces(g, mine)) return;
       const double c[3] = {at.x, at.y, at.z};
       for (int a = 0; a < 3; ++a) {
         box.lo[a] = std::min(box.lo[a], c[a]);
@@ -63,8 +78,7 @@ std::vector<HeldSite> held_sites(const CaseSpec& spec, const BodyLayout& layout,
     visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
       const std::size_t g = r.begin + k;
       const double c[3] = {at.x, at.y, at.z};
-      bool near =
-          (g >= mine.begin && g < mine.end) || std::binary_search(also.begin(), also.end(), g);
+      bool near = in_pieces(g, mine) || std::binary_search(also.begin(), also.end(), g);
       for (std::size_t n = 0; n < boxes.size() && !near; ++n) {
         near = true;
         for (int a = 0; a < 3; ++a)
@@ -207,10 +221,11 @@ Window make_window(const CaseSpec& spec, const BodyLayout& layout, const BondGeo
 // Every contact candidate of the run (global storage indices, ascending)
 // and its group: each rank finds those among its own sites, whose bond rows
 // the window holds whole, and the ranks share them in rank order.
-CandidateList every_candidate(const CaseSpec& spec, const Window& w, Range mine,
+CandidateList every_candidate(const CaseSpec& spec, const Window& w, const std::vector<Range>& mine,
                               const RankGroup& world) {
+  if (mine.size() > 1) throw std::logic_error("contact over ranks: a cut in slabs only");
   CandidateList own;
-  find_contact_candidates(spec, w.state, w.range(mine), own);
+  if (!mine.empty()) find_contact_candidates(spec, w.state, w.range(mine.front()), own);
   std::vector<double> pairs;
   for (std::size_t k = 0; k < own.index.size(); ++k)
     pairs.insert(pairs.end(), {static_cast<double>(w.global_of[own.index[k]]),
@@ -230,7 +245,7 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   if (spec.contact.enabled && world == nullptr)
     throw std::logic_error("set_up_part: contact needs the ranks to share their candidates");
   const BodyLayout layout = body_layout(spec);
-  const Range mine = d.owned(rank);
+  const std::vector<Range> mine = d.pieces(rank);
   const BondGeometry geometry = case_bond_geometry(spec);
   // A bond joins sites closer than re: every partner of an owned site lies
   // within re of the owned sites' box.
@@ -303,12 +318,12 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
 
   // The part in window indices (the cut there: each rank's first held
   // particle), then in global ones.
-  Decomposition window_cut;
-  for (const std::size_t start : d.starts) window_cut.starts.push_back(window.index(start));
+  Decomposition window_cut = d;
+  for (std::size_t& start : window_cut.starts) start = window.index(start);
   LocalPart part = local_part(s, window_cut, rank);
   part.decomposition = d;
   for (std::uint32_t& g : part.layout.global_of) g = global_of[g];
-  part.layout.owned_global = mine;
+  part.layout.set_owned_pieces(mine);
   part.moving_begin = 0;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].kind == Kind::wall) part.moving_begin += layout.range[b].size();

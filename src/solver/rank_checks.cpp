@@ -32,7 +32,7 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   const Range owned = layout.owned;
   const auto global_index = [&](std::size_t i) { return static_cast<double>(layout.global_of[i]); };
   ordered_sum_part<kMotionSums>(
-      part.moving_begin, part.particles_in_run, layout.owned_global,
+      part.moving_begin, part.particles_in_run, layout.owned_pieces,
       [&](std::size_t g) { return motion_terms(p, layout.local_of_owned(g)); })
       .append_to(out);
   // The first non-finite particle, as check_finite scans.
@@ -65,19 +65,14 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
   StateSlice::append_items(part.local, owned, out);
   // Its part of each elastic body's extent.
   for (const Range body : part.extent_ranges) {
-    const Range mine{std::max(body.begin, layout.owned_global.begin),
-                     std::min(body.end, layout.owned_global.end)};
-    const std::array<double, 6> extent =
-        mine.begin < mine.end
-            ? extent_of(p, {layout.local_of_owned(mine.begin), layout.local_of_owned(mine.end)})
-            : extent_of(p, {});
+    const std::array<double, 6> extent = extent_of(p, layout.owned_within(body));
     out.insert(out.end(), extent.begin(), extent.end());
   }
   // The probes it owns: their number in the case and position.
   std::vector<double> probes;
   for (std::size_t k = 0; k < part.probes.size(); ++k) {
     const std::size_t g = part.probes[k];
-    if (g < layout.owned_global.begin || g >= layout.owned_global.end) continue;
+    if (!layout.owns(g)) continue;
     const std::array<double, 3> at = position_of(p, layout.local_of_owned(g));
     probes.insert(probes.end(), {static_cast<double>(k), at[0], at[1], at[2]});
   }
@@ -100,15 +95,19 @@ void append_rank_check(const RankPart& part, std::vector<double>& out) {
 }
 
 void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverState& global,
-                      Range owned) {
+                      const std::vector<Range>& owned) {
   motion_.push_back(OrderedSumPart<kMotionSums>::read(in, at));
   if (at + 3 > in.size()) throw std::runtime_error("a rank's check cut short");
   const double bad = in[at++];
-  // Ranks are read in storage order: the first found is the first.
-  if (bad != kNone && figures_.finite.ok)
-    figures_.finite = non_finite_verdict(static_cast<std::size_t>(bad));
+  // The first in storage order over the ranks (a rank's own is its first).
+  if (bad != kNone && (figures_.finite.ok || bad < static_cast<double>(first_bad_))) {
+    first_bad_ = static_cast<std::size_t>(bad);
+    figures_.finite = non_finite_verdict(first_bad_);
+  }
   const double fastest = in[at++], fastest2 = in[at++];
-  if (fastest != kNone && fastest2 > figures_.fastest.speed2)
+  if (fastest != kNone && (fastest2 > figures_.fastest.speed2 ||
+                           (fastest2 == figures_.fastest.speed2 &&
+                            static_cast<std::size_t>(fastest) < figures_.fastest.particle)))
     figures_.fastest = {static_cast<std::size_t>(fastest), fastest2};
   load_work_.push_back(read_list(in, at));
   body_work_.push_back(read_list(in, at));

@@ -43,9 +43,10 @@ class RankChecks {
  public:
   // For a run with `elastic_bodies` elastic bodies (their extents).
   explicit RankChecks(std::size_t elastic_bodies) : elastic_bodies_(elastic_bodies) {}
-  // Rank `owned`'s share; its rigid bodies' and loads' fields go into
-  // `global` (rank 0's copy).
-  void read(const std::vector<double>& in, std::size_t& at, SolverState& global, Range owned);
+  // The share of the rank that owns `owned` (its storage ranges); its rigid
+  // bodies' and loads' fields go into `global` (rank 0's copy).
+  void read(const std::vector<double>& in, std::size_t& at, SolverState& global,
+            const std::vector<Range>& owned);
   // The figures of the whole state `global` (its loads and rigid bodies as
   // set up: which rank owns which), cut by `d`; the strain energy and the
   // integrity check come from the fields round.
@@ -57,7 +58,8 @@ class RankChecks {
   std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order (no pressure)
   std::vector<double> pressure_nodes_;  // (pressure, node, x, y, z) from every rank
   std::size_t elastic_bodies_;
-  CheckFigures figures_;  // the first-found and largest, the extents, the probes
+  CheckFigures figures_;       // the first-found and largest, the extents, the probes
+  std::size_t first_bad_ = 0;  // the first non-finite particle so far (figures_.finite)
 };
 
 }  // namespace mpsolid

@@ -45,8 +45,7 @@ SurfaceMarks rank_surface_marks(const RankPart& part, const RankGroup& world,
   const ParticleStore& p = part.local.particles;
   const LocalLayout& layout = part.layout;
   if (p.dimension == 3) return space_surface_marks(part.local, layout.owned);
-  const Range owned = layout.owned_global;
-  const auto owns = [&](std::size_t g) { return g >= owned.begin && g < owned.end; };
+  const auto owns = [&](std::size_t g) { return layout.owns(g); };
   const auto local_of = [&](std::size_t g) { return layout.find(g); };
   NodePositions nodes = surface_nodes(surfaces, p.x.data(), p.y.data(), local_of, owns);
   // Each rank's nodes (surface, node, x, y) to every rank.

@@ -14,6 +14,7 @@
 #include "src/solver/contact_copy.hpp"
 #include "src/solver/distributed_step.hpp"
 #include "src/solver/gas_outlines.hpp"
+#include "src/solver/part_cut.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/rank_rows.hpp"
 #include "src/solver/setup.hpp"
@@ -85,10 +86,24 @@ RankTimes read_report(const std::vector<double>& in, std::size_t at, int rank,
 // case, or word that its part follows (in pieces); empty: the case was
 // refused.
 constexpr double kCutFollows = 0.0, kPartFollows = 1.0;
+// The cut: the ranks, the pieces' starts, then their owners (none: slabs).
 std::vector<double> cut_message(const Decomposition& d) {
-  std::vector<double> message{kCutFollows};
+  std::vector<double> message{kCutFollows, static_cast<double>(d.ranks()),
+                              static_cast<double>(d.starts.size())};
   message.insert(message.end(), d.starts.begin(), d.starts.end());
+  message.insert(message.end(), d.owners.begin(), d.owners.end());
   return message;
+}
+Decomposition cut_of_message(const std::vector<double>& message) {
+  const auto ranks = static_cast<int>(message.at(1));
+  const auto starts = static_cast<std::size_t>(message.at(2));
+  Decomposition cut;
+  for (std::size_t k = 0; k < starts; ++k)
+    cut.starts.push_back(static_cast<std::size_t>(message.at(3 + k)));
+  for (std::size_t k = 3 + starts; k < message.size(); ++k)
+    cut.owners.push_back(static_cast<int>(message[k]));
+  if (!cut.owners.empty()) cut.rank_count = ranks;
+  return cut;
 }
 
 InputError refusal(const CaseSpec& spec, const std::string& why, int ranks) {
@@ -170,8 +185,7 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
   if (how.describe) {
     parts.describe =
         static_cast<std::size_t>(from_rank_zero(world, static_cast<double>(parts.describe)));
-    const Range mine = p.layout.owned_global;
-    if (parts.describe >= mine.begin && parts.describe < mine.end) {
+    if (p.layout.owns(parts.describe)) {
       const ParticleFacts f =
           ParticleFacts::of(p.local.particles, p.layout.local_of_owned(parts.describe));
       back.insert(back.end(), {1.0, static_cast<double>(f.id), static_cast<double>(f.body),
@@ -274,6 +288,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   // names it), then each follower's part.
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
+  cut_ = {"slabs", 0.0, 0.0};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   // Without contact (whose candidates the ranks share as they set up,
   // which rank 0's part cut from its copy would not join), each follower
@@ -301,13 +316,16 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
     throw refusal(spec, e.what(), world.size());
   }
   parts_->decomposition = decomposition;
+  pieces_ = decomposition.pieces_by_rank();
 }
 
 RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverState& head)
     : followers_(followers) {
   const Communicator& world = followers.world();
   followers.send_case(spec.resolved_toml);
-  const Decomposition cut = decompose_case(spec, world.size());
+  const CaseCut chosen = cut_case(spec, world.size(), followers.cut());
+  const Decomposition& cut = chosen.decomposition;
+  cut_ = {chosen.kind, chosen.slab_ghosts, chosen.band_ghosts};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(cut));
   try {
@@ -316,9 +334,10 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
     throw refusal(spec, e.what(), world.size());
   }
   parts_->decomposition = cut;
+  pieces_ = cut.pieces_by_rank();
   // The head: what every rank's part knows of the whole (the bodies'
   // ranges, the probes, the damping), then every rank's rigid bodies and
-  // loads, which arrive in storage order; the loads go back to the case's.
+  // loads; the loads go back to the case's order.
   const SolverState& mine = parts_->part.local;
   head = SolverState{};
   head.particles.dimension = spec.dimension;
@@ -330,6 +349,10 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
     contact_copy_ = std::make_unique<ContactCopy>(
         copy_contact_candidates(mine, parts_->part.layout, head.contact));
   exchange(head, 0, {.head = true});
+  // In storage order (with a cut in pieces, the ranks' are interleaved).
+  std::stable_sort(
+      head.rigid_bodies.begin(), head.rigid_bodies.end(),
+      [](const RigidBody& a, const RigidBody& b) { return a.range.begin < b.range.begin; });
   // Every part holds each pressure load (a gas load too) whole, with the
   // same running step: rank 0 keeps its own (its nodes' weights over its
   // own part, which only the ranks' steps read), over the body's global
@@ -454,6 +477,9 @@ void RankedStepper::bring_to_rank_zero(SolverState& global) {
 RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exchange how) {
   const Communicator& world = followers_.world();
   const Decomposition& d = parts_->decomposition;
+  const auto pieces_of = [&](int r) -> const std::vector<Range>& {
+    return pieces_[static_cast<std::size_t>(r)];
+  };
   RankPart& p = parts_->part;
   how.gas_forces = std::exchange(gas_forces_due_, false);
   followers_.send_command(steps, how);
@@ -464,7 +490,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
   if (how.send_items) {
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> items{static_cast<double>(global.step)};
-      StateSlice::append_items(global, d.owned(r), items);
+      StateSlice::append_items(global, pieces_of(r), items);
       if (r == 0)
         take_items(p, items);
       else
@@ -476,7 +502,7 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
       throw std::logic_error("RankedStepper: slices to send, but rank 0 holds none");
     for (int r = 0; r < world.size(); ++r) {
       std::vector<double> slice{static_cast<double>(global.step)};
-      StateSlice::append(global, d.owned(r), slice);
+      StateSlice::append(global, pieces_of(r), slice);
       count_slice_move(r, slice.size() - 1);
       if (r == 0)  // rank 0's own slice, through the same message form
         take_slice(p, slice);
@@ -514,10 +540,10 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
     if (how.bring_back) {
       const std::size_t first = at;
       if (parts_->whole_on_rank_zero) {
-        StateSlice::read(global, d.owned(r), back, at);
+        StateSlice::read(global, pieces_of(r), back, at);
         count_slice_move(r, at - first);
       } else {
-        StateSlice::read_items(global, d.owned(r), back, at);
+        StateSlice::read_items(global, pieces_of(r), back, at);
       }
     }
     if (how.bring_back || how.report) {
@@ -525,9 +551,9 @@ RankFields RankedStepper::exchange(SolverState& global, std::int64_t steps, Exch
       at += kReportSize;
     }
     if (how.fields)
-      read_rank_fields(back, at, d.owned(r), global.particles, energy_parts, out,
+      read_rank_fields(back, at, pieces_of(r), global.particles, energy_parts, out,
                        field_arrays(*parts_, how));
-    if (how.check) checks.read(back, at, global, d.owned(r));
+    if (how.check) checks.read(back, at, global, pieces_of(r));
     if (how.write_rows) {
       const std::string failed = read_rank_rows(back, at, r, parts_->placement, placed_);
       if (write_failure.empty()) write_failure = failed;
@@ -612,9 +638,7 @@ int follow_rank_zero(const Communicator& world) {
     std::unique_ptr<RankStepping> parts;
     if (!first.empty() && first[0] == kCutFollows) {
       // The cut: this rank sets its own part up from the case.
-      Decomposition cut;
-      for (std::size_t k = 1; k < first.size(); ++k)
-        cut.starts.push_back(static_cast<std::size_t>(first[k]));
+      const Decomposition cut = cut_of_message(first);
       try {
         parts = make_parts(spec, set_up_part(spec, cut, world.rank(), &world));
       } catch (const std::invalid_argument& e) {

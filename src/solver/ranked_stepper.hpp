@@ -33,6 +33,7 @@
 #include "src/distributed/communicator.hpp"
 #include "src/solver/contact_copy.hpp"
 #include "src/solver/distributed_step.hpp"
+#include "src/solver/part_cut.hpp"
 #include "src/solver/rank_checks.hpp"
 #include "src/solver/stepper.hpp"
 
@@ -64,12 +65,15 @@ struct Exchange {
 // ranks; its destructor releases the followers however rank 0 leaves.
 class Followers {
  public:
-  explicit Followers(const Communicator& world) : world_(world) {}
+  explicit Followers(const Communicator& world, CutChoice cut = CutChoice::automatic)
+      : world_(world), cut_(cut) {}
   ~Followers() { release(); }
   Followers(const Followers&) = delete;
   Followers& operator=(const Followers&) = delete;
 
   const Communicator& world() const { return world_; }
+  // How a run that sets its parts up from the case cuts it.
+  CutChoice cut() const { return cut_; }
   // Sends the case (its resolved TOML) to the followers; once per run.
   void send_case(const std::string& resolved_toml);
   // Tells the followers to step `steps` steps and what the batch moves.
@@ -81,6 +85,7 @@ class Followers {
  private:
   enum class Stage { before_case, stepping, released };
   const Communicator& world_;
+  CutChoice cut_;
   Stage stage_ = Stage::before_case;
 };
 
@@ -155,6 +160,7 @@ class RankedStepper final : public Stepper {
   std::vector<RankTimes> rank_times(SolverState& global) override;
   // Each rank steps with its threads forking and joining per loop.
   ThreadCrossing thread_crossing() const override { return {}; }
+  CutFacts rank_cut() const override { return cut_; }
 
  private:
   // Tells the followers; with `send_slices`, sends every rank its owned
@@ -182,11 +188,13 @@ class RankedStepper final : public Stepper {
   PlacedRows placed_;                    // of the last placement's round
   std::int64_t good_step_ = -1;          // of the ranks' last good slices
   double good_peak_work_ = 0;
-  RunCounts counts_;             // without it, what it records of them
-  ParticleFacts described_;      // of the last describe round
-  bool ranks_ahead_ = false;     // stepped since rank 0's copy was brought back
-  bool ranks_behind_ = false;    // rank 0's copy changed since they got it
-  bool gas_forces_due_ = false;  // the gas's forces wait for the ranks' next round
+  RunCounts counts_;                        // without it, what it records of them
+  CutFacts cut_;                            // how the case is cut
+  std::vector<std::vector<Range>> pieces_;  // ... each rank's storage ranges
+  ParticleFacts described_;                 // of the last describe round
+  bool ranks_ahead_ = false;                // stepped since rank 0's copy was brought back
+  bool ranks_behind_ = false;               // rank 0's copy changed since they got it
+  bool gas_forces_due_ = false;             // the gas's forces wait for the ranks' next round
 };
 
 // A follower's whole life: receives the case, sets its part up, and steps

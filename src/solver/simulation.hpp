@@ -123,6 +123,8 @@ class Simulation {
   // On one process with several threads: what crossed between them per
   // step (src/solver/thread_parts.hpp); threads = 0 when none stepped so.
   ThreadCrossing thread_crossing() const { return stepper_->thread_crossing(); }
+  // Over several MPI ranks: how the case is cut (an empty kind on one rank).
+  CutFacts rank_cut() const { return stepper_->rank_cut(); }
   // The case's gas, or nullptr without a [gas] section.
   const GasCoupling* gas() const { return gas_.get(); }
   // The gas's steps so far (-1 without a gas).

@@ -6,6 +6,7 @@
 // their implementations.
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "kernels/model_common.hpp"
@@ -135,6 +136,8 @@ class Stepper {
   // With threads stepping as ranks on one process: what crossed between
   // them per step, and each thread's part (threads = 0 otherwise).
   virtual ThreadCrossing thread_crossing() const = 0;
+  // Over MPI ranks: how the case is cut (an empty kind on one rank).
+  virtual CutFacts rank_cut() const { return {}; }
 };
 
 }  // namespace mpsolid

@@ -31,27 +31,33 @@ StableStepEstimate with_contact(StableStepEstimate e, const CaseSpec& spec,
 // (the one-process bits), the largest value gathered likewise.
 struct PartSums {
   const RankGroup& world;
-  Range elastic;           // the owned elastic particles (local indices)
-  std::size_t first;       // global storage index of local index elastic.begin
-  Range global_elastic{};  // every rank's elastic particles (global)
+  const LocalLayout& layout;
+  Range elastic;            // the owned elastic particles (local indices)
+  std::vector<Range> held;  // ... as global storage ranges
+  Range global_elastic{};   // every rank's elastic particles (global)
 
-  PartSums(const RankGroup& w, const RankPart& part) : world(w) {
-    const Range owned = part.layout.owned, kind = part.local.particles.elastic;
+  PartSums(const RankGroup& w, const RankPart& part) : world(w), layout(part.layout) {
+    const Range owned = layout.owned, kind = part.local.particles.elastic;
     const std::size_t b = std::clamp(kind.begin, owned.begin, owned.end);
     elastic = {b, std::clamp(kind.end, b, owned.end)};
-    first = part.layout.owned_global.begin + (elastic.begin - owned.begin);
+    // The owned pieces within the owned elastic particles' global span.
+    const std::size_t from = elastic.empty() ? 0 : layout.global_of[elastic.begin];
+    const std::size_t to = elastic.empty() ? 0 : layout.global_of[elastic.end - 1] + std::size_t{1};
+    for (const Range r : layout.owned_pieces)
+      if (std::max(r.begin, from) < std::min(r.end, to))
+        held.push_back({std::max(r.begin, from), std::min(r.end, to)});
     // The elastic particles are one storage range: its ends over the ranks.
     const std::vector<double> ends =
-        world.all_gather({elastic.empty() ? -1.0 : static_cast<double>(first),
-                          elastic.empty() ? -1.0 : static_cast<double>(first + elastic.size())});
+        world.all_gather({elastic.empty() ? -1.0 : static_cast<double>(from),
+                          elastic.empty() ? -1.0 : static_cast<double>(to)});
     bool any = false;
     for (std::size_t r = 0; r + 1 < ends.size(); r += 2) {
       if (ends[r] < 0) continue;
-      const auto from = static_cast<std::size_t>(ends[r]);
-      const auto to = static_cast<std::size_t>(ends[r + 1]);
+      const auto lo = static_cast<std::size_t>(ends[r]);
+      const auto hi = static_cast<std::size_t>(ends[r + 1]);
       global_elastic =
-          any ? Range{std::min(global_elastic.begin, from), std::max(global_elastic.end, to)}
-              : Range{from, to};
+          any ? Range{std::min(global_elastic.begin, lo), std::max(global_elastic.end, hi)}
+              : Range{lo, hi};
       any = true;
     }
   }
@@ -59,8 +65,8 @@ struct PartSums {
   template <class Term>
   double sum(Term&& term) const {
     const OrderedSumPart<1> mine = ordered_sum_part<1>(
-        global_elastic.begin, global_elastic.end, {first, first + elastic.size()},
-        [&](std::size_t g) { return std::array<double, 1>{term(elastic.begin + (g - first))}; });
+        global_elastic.begin, global_elastic.end, held,
+        [&](std::size_t g) { return std::array<double, 1>{term(layout.local_of_owned(g))}; });
     std::vector<double> message;
     mine.append_to(message);
     const std::vector<double> all = world.all_gather(message);
@@ -98,9 +104,12 @@ StableStepEstimate estimate_part_stable_step(const CaseSpec& spec, RankPart& par
                                     sums);
       },
       part.model);
-  const double inv_mass =
-      sums.largest(largest_contact_inv_mass(spec, part.body_ranges, part.local.particles,
-                                            part.layout.owned_global, part.layout.owned.begin));
+  double mine = 0;
+  for (std::size_t k = 0; k < part.layout.owned_pieces.size(); ++k)
+    mine = std::max(
+        mine, largest_contact_inv_mass(spec, part.body_ranges, part.local.particles,
+                                       part.layout.owned_pieces[k], part.layout.piece_local[k]));
+  const double inv_mass = sums.largest(mine);
   part.halo_cost = before;
   return with_contact(e, spec, inv_mass);
 }

@@ -154,7 +154,7 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
     RankChecks checks(part.extent_ranges.size());
     std::size_t at = 0;
     SolverState copy = base.state();
-    for (int r = 0; r < world.size(); ++r) checks.read(all, at, copy, d.owned(r));
+    for (int r = 0; r < world.size(); ++r) checks.read(all, at, copy, d.pieces(r));
     EXPECT_EQ(at, all.size());
     return checks.finish(base.state(), d, {});
   };
@@ -192,9 +192,7 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
   const std::size_t n = whole.particles.size();
   for (const std::size_t bad : {n - 2, n / 3 + 1}) {
     const LocalLayout& layout = part.layout;
-    if (bad >= layout.owned_global.begin && bad < layout.owned_global.end)
-      part.local.particles.vx[layout.owned.begin + (bad - layout.owned_global.begin)] =
-          std::nan("");
+    if (layout.owns(bad)) part.local.particles.vx[layout.local_of_owned(bad)] = std::nan("");
   }
   const CheckFigures broken = figures();
   EXPECT_FALSE(broken.finite.ok);

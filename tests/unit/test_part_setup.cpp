@@ -29,6 +29,7 @@
 #include "src/solver/setup.hpp"
 #include "src/solver/simulation.hpp"
 #include "tests/support/test_cases.hpp"
+#include "tests/support/thread_team.hpp"
 
 namespace mpsolid {
 namespace {
@@ -55,18 +56,7 @@ Whole whole_state(const std::string& case_file, const std::vector<std::string>& 
   return w;
 }
 
-// Calls f(world, rank) on every one of `ranks` ranks together (threads as
-// ranks), then goes back to the thread count before.
-void as_ranks(int ranks, const std::function<void(const RankGroup&, int)>& f) {
-  const int threads_before = thread_count();
-  set_thread_count(ranks);
-  ThreadMailboxes boxes(ranks);
-  run_in_team([&] {
-    const auto me = static_cast<int>(team_rank());
-    serial_section([&] { f(ThreadRanks(boxes, me), me); });
-  });
-  set_thread_count(threads_before);
-}
+using testing::as_ranks;
 
 // Every rank's part set up alone, the ranks together (with contact they
 // share their candidates).
@@ -182,7 +172,8 @@ TEST(PartSetUp, TheRodStruckThroughAGas) {
 // rigid body and load, are the whole state's.
 LocalLayout whole_layout(const SolverState& s) {
   LocalLayout layout;
-  layout.owned = layout.owned_global = s.particles.all();
+  layout.owned = s.particles.all();
+  layout.set_owned_pieces({s.particles.all()});
   return layout;
 }
 void expect_the_whole_states_head(const std::string& case_file,

@@ -1,0 +1,32 @@
+#pragma once
+// How a case is cut over ranks (docs/mpi.md), made from the case alone (no
+// rank holds the bond table): either slabs of storage (decompose_case: each
+// rank one contiguous range, which within a body is a slab of its fill's
+// rows), or bands across the case's longest extent (each rank the sites
+// whose coordinate along that axis falls in its band: one piece of storage
+// per row it crosses). A long body stored along its length is cut along its
+// length by slabs and across it by bands. The cut chosen is the one whose
+// halo, estimated from the sites within a bond's reach of each cut, is the
+// smaller. Rigid bodies and bodies under a force are kept whole by both.
+#include <string>
+
+#include "src/case/case_spec.hpp"
+#include "src/distributed/decomposition.hpp"
+
+namespace mpsolid {
+
+enum class CutChoice { automatic, slabs, bands };
+
+struct CaseCut {
+  Decomposition decomposition;
+  std::string kind;  // "slabs", "bands along x" (y, z)
+  // The ghosts each cut implies, estimated: the sites within a bond's reach
+  // of each cut, over the cuts (0 with one rank).
+  double slab_ghosts = 0, band_ghosts = 0;
+};
+
+// The cut of `spec` over `ranks`. With contact, slabs (the decomposed
+// contact pass gathers the candidates in rank order).
+CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice = CutChoice::automatic);
+
+}  // namespace mpsolid

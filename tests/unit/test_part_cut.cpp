@@ -1,0 +1,125 @@
+// The cut of a case over ranks (src/solver/part_cut.hpp): a long body stored
+// along its length is cut across it in bands, whose halo is smaller than the
+// slabs' (the estimate and the real halo agree on that), every particle is
+// owned once, bodies kept whole stay whole, and the decomposed step on a cut
+// in pieces gives the serial run's bits (threads as ranks).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/part_message.hpp"
+#include "src/solver/case_loader.hpp"
+#include "src/solver/distributed_step.hpp"
+#include "src/solver/part_cut.hpp"
+#include "src/solver/simulation.hpp"
+#include "tests/support/test_cases.hpp"
+#include "tests/support/thread_team.hpp"
+
+namespace mpsolid {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+CaseSpec case_of(const std::string& file, const std::vector<std::string>& overrides = {}) {
+  return load_case(testing::source_path(file), overrides);
+}
+
+std::size_t ghosts_of(const BondTable& bonds, const Decomposition& d) {
+  std::size_t n = 0;
+  for (int r = 0; r < d.ranks(); ++r) n += plan_halo(bonds, d, r).ghosts.size();
+  return n;
+}
+
+TEST(PartCut, ALongStripIsCutAcrossItsLength) {
+  Simulation sim(case_of("cases/wave_strip.toml"));
+  const SolverState& s = sim.state();
+  for (const int ranks : {2, 3, 4}) {
+    SCOPED_TRACE(ranks);
+    const CaseCut cut = cut_case(sim.spec(), ranks);
+    EXPECT_EQ(cut.kind, "bands along x");
+    EXPECT_LT(cut.band_ghosts, 0.2 * cut.slab_ghosts);
+    const Decomposition& d = cut.decomposition;
+    ASSERT_FALSE(d.slabs());
+    EXPECT_EQ(d.ranks(), ranks);
+    EXPECT_EQ(d.particles(), s.particles.size());
+    // Every particle owned once, by a rank in range; pieces ascending.
+    std::vector<int> owner(s.particles.size(), -1);
+    for (int r = 0; r < ranks; ++r)
+      for (const Range piece : d.pieces(r))
+        for (std::size_t i = piece.begin; i < piece.end; ++i) {
+          EXPECT_EQ(owner[i], -1) << i;
+          owner[i] = r;
+          EXPECT_EQ(d.owner_of(i), r) << i;
+        }
+    EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0);
+    // The rigid driver whole on one rank.
+    for (const RigidBody& b : s.rigid_bodies)
+      for (std::size_t i = b.range.begin; i < b.range.end; ++i)
+        EXPECT_EQ(owner[i], owner[b.range.begin]);
+    // Balanced to within a column of the strip (10 particles) or the driver.
+    for (int r = 0; r < ranks; ++r) {
+      std::size_t n = 0;
+      for (const Range piece : d.pieces(r)) n += piece.size();
+      EXPECT_NEAR(static_cast<double>(n), static_cast<double>(s.particles.size()) / ranks, 30.0);
+    }
+    // The real halo agrees with the estimate: the bands' is far smaller.
+    EXPECT_LT(ghosts_of(s.bonds, d),
+              ghosts_of(s.bonds, cut_case(sim.spec(), ranks, CutChoice::slabs).decomposition) / 4);
+  }
+}
+
+TEST(PartCut, ABlockStoredAcrossItsLengthKeepsItsSlabs) {
+  // 10 wide, 80 high: rows along x are short, so slabs already cut across.
+  CaseSpec spec = testing::free_block_case(10, 80, false);
+  const CaseCut cut = cut_case(spec, 3);
+  EXPECT_EQ(cut.kind, "slabs");
+  EXPECT_TRUE(cut.decomposition.slabs());
+  EXPECT_LE(cut.slab_ghosts, cut.band_ghosts);
+}
+
+TEST(PartCut, ContactKeepsSlabs) {
+  const CaseCut cut = cut_case(case_of("cases/colliding_blocks.toml"), 3, CutChoice::bands);
+  EXPECT_TRUE(cut.decomposition.slabs());
+}
+
+// The decomposed step on bands, threads as ranks: after `steps` steps
+// every owned particle has the serial run's state, bit for bit.
+void expect_serial_bits_on_bands(const CaseSpec& spec, int ranks, std::int64_t steps) {
+  Simulation serial(spec);
+  const CaseSpec& run = serial.spec();  // its step fixed
+  const SolverState start = serial.state();
+  const CaseCut cut = cut_case(run, ranks, CutChoice::bands);
+  ASSERT_FALSE(cut.decomposition.slabs());
+  serial.advance(steps);
+  const ParticleStore& want = serial.particles();
+  std::vector<std::string> failures(static_cast<std::size_t>(ranks));
+  testing::as_ranks(ranks, [&](const RankGroup& world, int me) {
+    RankPart part = make_rank_part(run, local_part(start, cut.decomposition, me));
+    advance_rank_part(part, world, run.dt, steps);
+    const ParticleStore& got = part.local.particles;
+    for (std::size_t k = part.layout.owned.begin; k < part.layout.owned.end; ++k) {
+      const std::size_t g = part.layout.global_of[k];
+      for (const auto& [a, b] : {std::pair{&got.x, &want.x}, std::pair{&got.y, &want.y},
+                                 std::pair{&got.vx, &want.vx}, std::pair{&got.vy, &want.vy}})
+        if (!same_bits((*a)[k], (*b)[g]) && failures[static_cast<std::size_t>(me)].empty())
+          failures[static_cast<std::size_t>(me)] =
+              "rank " + std::to_string(me) + ": particle " + std::to_string(g) + " differs";
+    }
+  });
+  for (const std::string& f : failures) EXPECT_TRUE(f.empty()) << f;
+}
+
+TEST(PartCut, StepsOnBandsGiveTheSerialBits) {
+  expect_serial_bits_on_bands(case_of("cases/wave_strip.toml"), 3, 300);
+  expect_serial_bits_on_bands(testing::rod_case({"l0=0.002"}), 2, 200);
+  expect_serial_bits_on_bands(testing::rod_case({"l0=0.002", "model=finite_strain"}), 3, 200);
+  expect_serial_bits_on_bands(testing::rod_case({"l0=0.002", "model=paper_conservative"}), 4, 200);
+}
+
+}  // namespace
+}  // namespace mpsolid
