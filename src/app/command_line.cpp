@@ -1,7 +1,6 @@
 #include "src/app/command_line.hpp"
 
 #include <CLI/CLI.hpp>
-#include <map>
 
 #include "src/app/exit_codes.hpp"
 #include "src/app/version.hpp"
@@ -20,14 +19,18 @@ void add_stepping_options(CLI::App& command, SteppingOptions& o, const std::stri
       "keep --threads for the whole run (by default the run tries fewer now and then and keeps "
       "them where they are faster, as on a busy machine; the results are the same bits either "
       "way)");
-  const std::map<std::string, CutChoice> cuts{
-      {"auto", CutChoice::automatic}, {"slabs", CutChoice::slabs}, {"bands", CutChoice::bands}};
   command
-      .add_option("--cut", o.cut,
-                  "how several MPI ranks cut the case: auto (the cut whose halo is estimated "
-                  "smaller), slabs (of storage) or bands (across the longest extent); the same "
-                  "bits either way (default: auto; one rank ignores it)")
-      ->transform(CLI::CheckedTransformer(cuts, CLI::ignore_case));
+      .add_option_function<std::string>(
+          "--cut",
+          [&o](const std::string& name) {
+            o.cut = name == "slabs"   ? CutChoice::slabs
+                    : name == "bands" ? CutChoice::bands
+                                      : CutChoice::automatic;
+          },
+          "how several MPI ranks cut the case: auto (the cut whose halo is estimated smaller), "
+          "slabs (of storage) or bands (across the longest extent); the same bits either way "
+          "(default: auto; one rank ignores it)")
+      ->check(CLI::IsMember({"auto", "slabs", "bands"}));
   command.add_option("--set", o.overrides, set_help)
       ->allow_extra_args(false)
       ->type_name("KEY=VALUE");

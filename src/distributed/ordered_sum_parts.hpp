@@ -8,14 +8,24 @@
 // every rank's pieces, put in serial order, finish each shared chunk from
 // zero in the serial order. A cut need not fall on the sum's chunks, so one
 // cut serves sums over different ranges (all particles, the moving ones).
+//
+// A shared chunk is finished on the ranks (finish_shared_chunks): its
+// running sum goes from the owner of each of its pieces to the next, each
+// adding its terms in order, which is the serial sum's own order from zero;
+// so a rank sends on only chunk sums, however finely the cut divides the
+// chunks (bands divide most of them).
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <limits>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
 #include "src/core/ordered_sum.hpp"
 #include "src/core/parallel.hpp"
+#include "src/distributed/decomposition.hpp"
+#include "src/distributed/rank_group.hpp"
 
 namespace mpsolid {
 
@@ -138,6 +148,119 @@ std::array<double, N> combine_ordered_sum(const std::vector<OrderedSumPart<N>>& 
   for (const auto& s : chunk_sums)
     for (std::size_t k = 0; k < N; ++k) total[k] += s[k];
   return total;
+}
+
+// The part `mine` of the ordered sum over [begin, end) (ordered_sum_part
+// over this rank's pieces of `d`) with every chunk that several pieces
+// share finished over the ranks: in rounds, the owner of each shared
+// chunk's k-th piece adds its terms to the running sum it got (zero for the
+// first piece) and hands it to the owner of the next, the last owner
+// keeping the chunk's sum. Collective over `world` (every rank makes the
+// same exchanges: the rounds follow from `d`). What is left is only whole
+// chunks' sums, the serial bits, each with its chunk's first index.
+template <std::size_t N>
+OrderedSumPart<N> finish_shared_chunks(const OrderedSumPart<N>& mine, std::size_t begin,
+                                       std::size_t end, const Decomposition& d,
+                                       const RankGroup& world) {
+  using Value = std::array<double, N>;
+  const int me = world.rank();
+  // Every shared chunk's pieces in storage order: first index and owner.
+  struct Segment {
+    std::size_t first;
+    int owner;
+  };
+  std::vector<std::vector<Segment>> shared;
+  std::vector<std::size_t> shared_chunk;
+  {
+    std::vector<Segment> current;
+    std::size_t current_chunk = std::numeric_limits<std::size_t>::max();
+    const auto close = [&] {
+      if (current.size() > 1) {
+        shared.push_back(current);
+        shared_chunk.push_back(current_chunk);
+      }
+      current.clear();
+    };
+    for (std::size_t k = 0; k + 1 < d.starts.size(); ++k) {
+      const std::size_t b = std::max(begin, d.starts[k]), e = std::min(end, d.starts[k + 1]);
+      const int owner = d.owners.empty() ? static_cast<int>(k) : d.owners[k];
+      for (std::size_t at = b; at < e;) {
+        const std::size_t chunk = (at - begin) / kSumChunk;
+        if (chunk != current_chunk) {
+          close();
+          current_chunk = chunk;
+        }
+        current.push_back({at, owner});
+        at = std::min(e, begin + (chunk + 1) * kSumChunk);
+      }
+    }
+    close();
+  }
+  // This rank's terms of a piece starting at `first`, added onto v.
+  const auto fold = [&](std::size_t first, Value v) {
+    const auto at = std::lower_bound(mine.pieces.begin(), mine.pieces.end(), first,
+                                     [](const auto& p, std::size_t f) { return p.first < f; });
+    if (at == mine.pieces.end() || at->first != first || at->whole)
+      throw std::logic_error("finish_shared_chunks: a piece of the cut without its terms");
+    for (const Value& t : at->values)
+      for (std::size_t k = 0; k < N; ++k) v[k] += t[k];
+    return v;
+  };
+  std::size_t rounds = 0;
+  for (const auto& s : shared) rounds = std::max(rounds, s.size() - 1);
+  std::vector<Value> running(shared.size(), Value{});
+  for (std::size_t k = 0; k < rounds; ++k) {
+    std::map<int, std::vector<double>> out;
+    std::map<int, std::size_t> expected;
+    for (std::size_t c = 0; c < shared.size(); ++c) {
+      const auto& s = shared[c];
+      if (k + 1 >= s.size()) continue;
+      if (s[k].owner == me) {
+        running[c] = fold(s[k].first, running[c]);
+        if (s[k + 1].owner != me) {
+          std::vector<double>& to = out[s[k + 1].owner];
+          to.insert(to.end(), running[c].begin(), running[c].end());
+        }
+      }
+      if (s[k + 1].owner == me && s[k].owner != me) {
+        expected[s[k].owner] += N;
+        out[s[k].owner];  // the peer lists this rank too: an empty letter
+      }
+      if (s[k].owner == me && s[k + 1].owner != me) expected[s[k + 1].owner];
+    }
+    std::vector<int> peers;
+    std::vector<std::vector<double>> letters, in;
+    for (auto& [peer, letter] : out) {
+      peers.push_back(peer);
+      letters.push_back(std::move(letter));
+      in.emplace_back(expected[peer]);
+    }
+    world.exchange(peers, letters, in);
+    std::vector<std::size_t> read(peers.size(), 0);
+    for (std::size_t c = 0; c < shared.size(); ++c) {
+      const auto& s = shared[c];
+      if (k + 1 >= s.size() || s[k + 1].owner != me || s[k].owner == me) continue;
+      const auto p = static_cast<std::size_t>(
+          std::lower_bound(peers.begin(), peers.end(), s[k].owner) - peers.begin());
+      std::copy_n(in[p].begin() + static_cast<long>(read[p]), N, running[c].begin());
+      read[p] += N;
+    }
+  }
+  OrderedSumPart<N> done;
+  for (const auto& piece : mine.pieces)
+    if (piece.whole) done.pieces.push_back(piece);
+  for (std::size_t c = 0; c < shared.size(); ++c)
+    if (shared[c].back().owner == me) {
+      typename OrderedSumPart<N>::Piece piece;
+      piece.chunk = shared_chunk[c];
+      piece.first = shared[c].front().first;
+      piece.whole = true;
+      piece.values.push_back(fold(shared[c].back().first, running[c]));
+      done.pieces.push_back(std::move(piece));
+    }
+  std::sort(done.pieces.begin(), done.pieces.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  return done;
 }
 
 }  // namespace mpsolid

@@ -63,6 +63,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.halo = std::move(local.halo);
   part.local = std::move(local.state);
   part.particles_in_run = local.decomposition.starts.back();
+  part.decomposition = local.decomposition;
   part.moving_begin = local.moving_begin;
   for (std::size_t b = 0; b < spec.bodies.size() && b < local.body_ranges.size(); ++b)
     if (spec.bodies[b].kind == Kind::elastic) part.extent_ranges.push_back(local.body_ranges[b]);
@@ -106,12 +107,16 @@ void append_rank_fields(RankPart& part, const RankGroup& world, const IntegrityL
           out.insert(out.end(), p.pressure.begin() + static_cast<long>(owned.begin),
                      p.pressure.begin() + static_cast<long>(owned.end));
         }
-        // The owned range's share of the serial chunks (a cut may fall
-        // inside one).
-        ordered_sum_part<1>(0, part.particles_in_run, layout.owned_pieces, [&](std::size_t g) {
-          return std::array<double, 1>{
-              model.particle_strain_energy(p, s.bonds, layout.local_of_owned(g))};
-        }).append_to(out);
+        // The owned pieces' share of the serial chunks (a cut may fall
+        // inside one), the chunks it shares finished on the ranks.
+        finish_shared_chunks(
+            ordered_sum_part<1>(0, part.particles_in_run, layout.owned_pieces,
+                                [&](std::size_t g) {
+                                  return std::array<double, 1>{model.particle_strain_energy(
+                                      p, s.bonds, layout.local_of_owned(g))};
+                                }),
+            0, part.particles_in_run, part.decomposition, world)
+            .append_to(out);
         const IntegrityReport r = model.check_integrity(p, s.bonds, limits, owned);
         out.push_back(r.value);
         out.push_back(owned.empty() ? 0.0 : static_cast<double>(layout.global_of[r.particle]));

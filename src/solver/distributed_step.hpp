@@ -38,6 +38,7 @@ struct RankPart {
   SolverState local;
   RankContact contact;
   AnyModel model;
+  Decomposition decomposition;       // the run's cut (what each rank owns)
   HaloCost halo_cost;                // summed over every step so far
   RankTimes times;                   // the passes' wall time, summed likewise
   std::size_t particles_in_run = 0;  // over every rank: the ordered sums' range

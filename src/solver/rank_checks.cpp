@@ -26,14 +26,17 @@ std::vector<double> read_list(const std::vector<double>& in, std::size_t& at) {
 }
 }  // namespace
 
-void append_rank_check(const RankPart& part, std::vector<double>& out) {
+void append_rank_check(const RankPart& part, const RankGroup& world, std::vector<double>& out) {
   const ParticleStore& p = part.local.particles;
   const LocalLayout& layout = part.layout;
   const Range owned = layout.owned;
   const auto global_index = [&](std::size_t i) { return static_cast<double>(layout.global_of[i]); };
-  ordered_sum_part<kMotionSums>(
-      part.moving_begin, part.particles_in_run, layout.owned_pieces,
-      [&](std::size_t g) { return motion_terms(p, layout.local_of_owned(g)); })
+  // Its share of the motion sums, the chunks it shares finished on the ranks.
+  finish_shared_chunks(
+      ordered_sum_part<kMotionSums>(
+          part.moving_begin, part.particles_in_run, layout.owned_pieces,
+          [&](std::size_t g) { return motion_terms(p, layout.local_of_owned(g)); }),
+      part.moving_begin, part.particles_in_run, part.decomposition, world)
       .append_to(out);
   // The first non-finite particle, as check_finite scans.
   double bad = kNone;

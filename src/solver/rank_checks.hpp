@@ -36,7 +36,7 @@ struct CheckFigures {
 // indices; its own loads' and rigid bodies' work and fields in their order;
 // its part of the elastic bodies' extents, its probes, the pressure nodes it
 // hosts and its moving contact candidates).
-void append_rank_check(const RankPart& part, std::vector<double>& out);
+void append_rank_check(const RankPart& part, const RankGroup& world, std::vector<double>& out);
 
 // Every rank's share read in rank order, then the figures.
 class RankChecks {

@@ -207,7 +207,7 @@ std::vector<double> step_and_report(RankStepping& parts, const Communicator& wor
     parts.rebuilds_reported = p.local.contact.rebuilds;
   }
   if (how.fields) append_rank_fields(p, world, parts.limits, back, field_arrays(parts, how));
-  if (how.check) append_rank_check(p, back);
+  if (how.check) append_rank_check(p, world, back);
   if (how.write_rows) {
     const bool frame = parts.placement.frame();
     if (frame && p.local.particles.dimension != 3 && !parts.surfaces_made) {

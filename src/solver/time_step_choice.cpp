@@ -27,16 +27,19 @@ StableStepEstimate with_contact(StableStepEstimate e, const CaseSpec& spec,
 }
 
 // A rank's share of the estimate's sums: its owned elastic particles,
-// every rank's part of each ordered sum gathered and combined in rank order
-// (the one-process bits), the largest value gathered likewise.
+// every rank's part of each ordered sum (its chunks' sums, those shared
+// with other ranks finished on the ranks) gathered and combined in storage
+// order (the one-process bits), the largest value gathered likewise.
 struct PartSums {
   const RankGroup& world;
   const LocalLayout& layout;
+  const Decomposition& cut;
   Range elastic;            // the owned elastic particles (local indices)
   std::vector<Range> held;  // ... as global storage ranges
   Range global_elastic{};   // every rank's elastic particles (global)
 
-  PartSums(const RankGroup& w, const RankPart& part) : world(w), layout(part.layout) {
+  PartSums(const RankGroup& w, const RankPart& part)
+      : world(w), layout(part.layout), cut(part.decomposition) {
     const Range owned = layout.owned, kind = part.local.particles.elastic;
     const std::size_t b = std::clamp(kind.begin, owned.begin, owned.end);
     elastic = {b, std::clamp(kind.end, b, owned.end)};
@@ -64,9 +67,12 @@ struct PartSums {
 
   template <class Term>
   double sum(Term&& term) const {
-    const OrderedSumPart<1> mine = ordered_sum_part<1>(
-        global_elastic.begin, global_elastic.end, held,
-        [&](std::size_t g) { return std::array<double, 1>{term(layout.local_of_owned(g))}; });
+    // The chunks it shares finished on the ranks: only chunk sums go round.
+    const OrderedSumPart<1> mine = finish_shared_chunks(
+        ordered_sum_part<1>(
+            global_elastic.begin, global_elastic.end, held,
+            [&](std::size_t g) { return std::array<double, 1>{term(layout.local_of_owned(g))}; }),
+        global_elastic.begin, global_elastic.end, cut, world);
     std::vector<double> message;
     mine.append_to(message);
     const std::vector<double> all = world.all_gather(message);

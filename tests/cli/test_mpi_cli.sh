@@ -138,6 +138,29 @@ print(r["ranks"], "with an entry per rank" if ok else "WITHOUT a whole entry per
     fail "$ranks ranks: run.json says ranks = $recorded"
 done
 
+# The rod cut both ways at 3 ranks (--cut): the serial bits either way,
+# run.json's cut names it, and the bands (across the rod's length) hold
+# fewer ghosts than the slabs (along it). A cut of another name is bad
+# input.
+for cut in slabs bands; do
+  mpi 3 "cut_$cut" run "$CASE" "${SETS[@]}" --set time.end=2e-4 --cut "$cut" \
+    --out "$TMP/cut_$cut"
+  [[ $rc -eq 0 ]] && same "3 ranks, --cut $cut" "$TMP/cut_$cut" || fail "--cut $cut: exit $rc"
+done
+cuts=$(/usr/bin/python3 -c '
+import json, sys
+runs = [json.load(open(p)) for p in sys.argv[1:]]
+ghosts = [sum(x["ghosts"] for x in r["per_rank"]) for r in runs]
+print(runs[0]["cut"]["kind"], "|", runs[1]["cut"]["kind"], "|", ghosts[1] < ghosts[0])' \
+  "$TMP/cut_slabs/run.json" "$TMP/cut_bands/run.json" 2>&1)
+[[ $cuts == "slabs | bands along x | True" ]] &&
+  ok "--cut: run.json names each cut, and the bands hold fewer ghosts" ||
+  fail "--cut: run.json's cuts and fewer ghosts for bands: $cuts"
+mpi 2 cut_bad run "$CASE" "${SETS[@]}" --cut diagonal --out "$TMP/cut_bad"
+[[ $rc -eq 2 && ! -e "$TMP/cut_bad" ]] && grep -q "diagonal not in {auto,slabs,bands}" \
+  "$TMP/cut_bad.err" && ok "--cut diagonal: exit 2, the allowed values named, nothing written" ||
+  fail "--cut diagonal: exit $rc"
+
 # A 2-rank run NAME with SETTINGS against the serial run in $TMP/sparse_serial:
 # the same outputs, and each rank's slice moved to rank 0 MOVES times
 # (run.json's slice_moves, each move a whole slice of 48 bytes per

@@ -148,7 +148,7 @@ void expect_whole_state_check(const CaseSpec& spec, std::int64_t steps) {
   const Decomposition d = decompose_state(base.state(), world.size());
   const auto figures = [&] {
     std::vector<double> mine;
-    append_rank_check(part, mine);
+    append_rank_check(part, world, mine);
     // Each rank's share after the other: each share reads its own length.
     const std::vector<double> all = world.all_gather(mine);
     RankChecks checks(part.extent_ranges.size());

@@ -1,6 +1,9 @@
 // An ordered sum computed by ranks holding contiguous parts of its range
 // (src/distributed/ordered_sum_parts.hpp): the serial sum's bits for any
-// cut, whether or not the cuts fall on the sum's chunks, through messages.
+// cut, whether or not the cuts fall on the sum's chunks, through messages;
+// and with a cut in many pieces per rank (bands), every shared chunk
+// finished on the ranks (threads as ranks) to the same bits, only chunk
+// sums left to gather.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +15,7 @@
 
 #include "src/core/ordered_sum.hpp"
 #include "src/distributed/ordered_sum_parts.hpp"
+#include "tests/support/thread_team.hpp"
 
 namespace mpsolid {
 namespace {
@@ -76,6 +80,47 @@ TEST(OrderedSumParts, ChunkSumsAddedOutOfOrderWouldDiffer) {
   for (std::size_t i = 37; i < 5000; ++i)
     for (std::size_t k = 0; k < 3; ++k) plain[k] += term(i)[k];
   EXPECT_FALSE(same_bits(plain, serial));
+}
+
+// A cut in pieces of random widths (some narrower than a chunk, some wider)
+// dealt to the ranks in turn, as bands deal a body's rows.
+Decomposition random_pieces(std::size_t n, int ranks, std::mt19937& random) {
+  std::uniform_int_distribution<std::size_t> width(1, 2 * kSumChunk);
+  std::vector<std::size_t> starts{0};
+  std::vector<int> owners;
+  for (int r = 0; starts.back() < n; r = (r + 1) % ranks) {
+    owners.push_back(r);
+    starts.push_back(std::min(n, starts.back() + width(random)));
+  }
+  return decomposition_in_pieces(starts, owners, ranks);
+}
+
+TEST(OrderedSumParts, SharedChunksFinishedOnTheRanksGiveTheSerialBits) {
+  std::mt19937 random(11);
+  const std::size_t n = 9000;
+  for (const auto& [begin, end] :
+       {std::pair<std::size_t, std::size_t>{0, n}, {37, 8000}, {1000, 1001}}) {
+    const std::array<double, 3> serial = ordered_sum<3>(begin, end, term);
+    for (int trial = 0; trial < 12; ++trial) {
+      const int ranks = 2 + trial % 3;
+      const Decomposition d = random_pieces(n, ranks, random);
+      std::vector<std::vector<double>> messages(static_cast<std::size_t>(ranks));
+      testing::as_ranks(ranks, [&](const RankGroup& world, int me) {
+        const OrderedSumPart<3> mine = finish_shared_chunks(
+            ordered_sum_part<3>(begin, end, d.pieces(me), term), begin, end, d, world);
+        for (const auto& piece : mine.pieces) EXPECT_TRUE(piece.whole);
+        mine.append_to(messages[static_cast<std::size_t>(me)]);
+      });
+      std::vector<OrderedSumPart<3>> parts;
+      for (const std::vector<double>& m : messages) {
+        std::size_t at = 0;
+        parts.push_back(OrderedSumPart<3>::read(m, at));
+      }
+      EXPECT_TRUE(same_bits(combine_ordered_sum(parts), serial))
+          << "range [" << begin << ", " << end << "), " << ranks << " ranks, "
+          << d.starts.size() - 1 << " pieces";
+    }
+  }
 }
 
 TEST(OrderedSumParts, AShortMessageIsAnError) {
