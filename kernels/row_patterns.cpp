@@ -77,8 +77,12 @@ RowPatterns find_row_patterns(const BondTable& bonds,
     const std::size_t length = bonds.end(i) - bonds.begin(i);
     longest = std::max(longest, length);
     usable[i] = length > 0 && length <= RowPatterns::kMaxEntries;
+    // A pattern lists its offsets ascending: a row whose partners are not
+    // (a rank's part in pieces, its ghosts stored after its own particles)
+    // goes row by row.
     for (std::uint32_t b = bonds.begin(i); b < bonds.end(i); ++b)
-      usable[i] = usable[i] && shell_of_entry[b] != off_shell;
+      usable[i] = usable[i] && shell_of_entry[b] != off_shell &&
+                  (b == bonds.begin(i) || bonds.neighbor[b] > bonds.neighbor[b - 1]);
     if (usable[i]) ++row_count[rows.of(i)];
   }
   RowPatterns s;
