@@ -81,7 +81,7 @@ CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
   CaseCut out;
   out.decomposition = decompose_case(spec, ranks);
   out.kind = "slabs";
-  if (ranks < 2 || choice == CutChoice::slabs || spec.contact.enabled) return out;
+  if (ranks < 2 || spec.contact.enabled) return out;
   const BodyLayout layout = body_layout(spec);
   if (layout.total == 0) return out;
   const BondGeometry geometry = case_bond_geometry(spec);
@@ -138,7 +138,9 @@ CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
   }
   out.slab_ghosts = slab_ghosts;
   out.band_ghosts = band_ghosts;
-  const bool bands = choice == CutChoice::bands || band_ghosts < 0.8 * slab_ghosts;
+  // Both estimates are reported, whichever cut is taken.
+  const bool bands = choice == CutChoice::bands ||
+                     (choice == CutChoice::automatic && band_ghosts < 0.8 * slab_ghosts);
   if (!bands) return out;
   // Each site's band, a body kept whole in its first site's; the pieces
   // are the runs of one band in storage order.

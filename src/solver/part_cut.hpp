@@ -21,7 +21,7 @@ struct CaseCut {
   Decomposition decomposition;
   std::string kind;  // "slabs", "bands along x" (y, z)
   // The ghosts each cut implies, estimated: the sites within a bond's reach
-  // of each cut, over the cuts (0 with one rank).
+  // of each cut, over the cuts (0 with one rank, or with contact).
   double slab_ghosts = 0, band_ghosts = 0;
 };
 

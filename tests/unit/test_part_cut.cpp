@@ -84,6 +84,16 @@ TEST(PartCut, ABlockStoredAcrossItsLengthKeepsItsSlabs) {
   EXPECT_LE(cut.slab_ghosts, cut.band_ghosts);
 }
 
+TEST(PartCut, AForcedCutStillReportsBothEstimates) {
+  const CaseCut auto_cut = cut_case(case_of("cases/wave_strip.toml"), 3);
+  const CaseCut slabs = cut_case(case_of("cases/wave_strip.toml"), 3, CutChoice::slabs);
+  EXPECT_EQ(slabs.kind, "slabs");
+  EXPECT_TRUE(slabs.decomposition.slabs());
+  EXPECT_EQ(slabs.slab_ghosts, auto_cut.slab_ghosts);
+  EXPECT_EQ(slabs.band_ghosts, auto_cut.band_ghosts);
+  EXPECT_GT(slabs.slab_ghosts, 0.0);
+}
+
 TEST(PartCut, ContactKeepsSlabs) {
   const CaseCut cut = cut_case(case_of("cases/colliding_blocks.toml"), 3, CutChoice::bands);
   EXPECT_TRUE(cut.decomposition.slabs());
