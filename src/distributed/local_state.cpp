@@ -18,11 +18,6 @@ void LocalLayout::set_owned_pieces(std::vector<Range> pieces) {
   if (at != owned.end) throw std::logic_error("LocalLayout: the owned pieces do not fill it");
 }
 
-Range LocalLayout::owned_hull() const {
-  if (owned_pieces.empty()) return {};
-  return {owned_pieces.front().begin, owned_pieces.back().end};
-}
-
 namespace {
 // The owned piece at or before `global` (its index; pieces.size() when none).
 std::size_t piece_at(const std::vector<Range>& pieces, std::size_t global) {
@@ -39,7 +34,6 @@ bool LocalLayout::owns(std::size_t global) const {
 }
 
 std::size_t LocalLayout::local_of_owned(std::size_t global) const {
-  if (owned_pieces.size() == 1) return owned.begin + (global - owned_pieces.front().begin);
   const std::size_t k = piece_at(owned_pieces, global);
   return piece_local[k] + (global - owned_pieces[k].begin);
 }
@@ -52,7 +46,6 @@ Range LocalLayout::owned_within(Range global) const {
     const Range r = owned_pieces[k];
     return piece_local[k] + (std::min(g, r.end) - r.begin);
   };
-  if (global.empty()) return {first_at(global.begin), first_at(global.begin)};
   return {first_at(global.begin), first_at(global.end)};
 }
 

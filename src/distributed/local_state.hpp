@@ -31,8 +31,6 @@ struct LocalLayout {
   std::size_t size() const { return global_of.size(); }
   // Sets the owned pieces (their particles are owned.begin on, in order).
   void set_owned_pieces(std::vector<Range> pieces);
-  // The owned pieces' hull (one slab: its range).
-  Range owned_hull() const;
   bool owns(std::size_t global) const;
   // The local index of an owned particle's global storage index.
   std::size_t local_of_owned(std::size_t global) const;

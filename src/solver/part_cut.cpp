@@ -84,8 +84,7 @@ CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
   if (ranks < 2 || spec.contact.enabled) return out;
   const BodyLayout layout = body_layout(spec);
   if (layout.total == 0) return out;
-  const BondGeometry geometry = case_bond_geometry(spec);
-  const double reach = geometry.re * (1.0 + 1e-9) + 1e-9 * spec.l0;
+  const double reach = bond_reach(spec);
   const Survey s = survey(spec, layout, out.decomposition);
   // Bands along the longest extent, over bins a quarter of l0 wide.
   int axis = 0;

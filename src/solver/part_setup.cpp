@@ -174,6 +174,10 @@ std::invalid_argument split(const std::string& what, const std::string& name) {
 }
 }  // namespace
 
+double bond_reach(const CaseSpec& spec) {
+  return case_bond_geometry(spec).re * (1.0 + 1e-9) + 1e-9 * spec.l0;
+}
+
 Decomposition decompose_case(const CaseSpec& spec, int ranks) {
   const BodyLayout layout = body_layout(spec);
   std::vector<Range> whole;
@@ -247,9 +251,8 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   const BodyLayout layout = body_layout(spec);
   const std::vector<Range> mine = d.pieces(rank);
   const BondGeometry geometry = case_bond_geometry(spec);
-  // A bond joins sites closer than re: every partner of an owned site lies
-  // within re of the owned sites' box.
-  const double reach = geometry.re * (1.0 + 1e-9) + 1e-9 * spec.l0;
+  // Every partner of an owned site lies within reach of the owned sites' box.
+  const double reach = bond_reach(spec);
   Window window = make_window(spec, layout, geometry, held_sites(spec, layout, mine, reach, {}));
   if (spec.contact.enabled) {
     // Every candidate of the run among the part's particles (the decomposed

@@ -14,6 +14,10 @@
 
 namespace mpsolid {
 
+// A bond's reach in the case, a hair over re (a bond joins sites closer
+// than re, whatever the rounding of their positions).
+double bond_reach(const CaseSpec& spec);
+
 // The case's cut over `ranks` from its particle count alone (no rank holds
 // the bond table to weigh them by), rigid bodies and bodies under a force
 // kept whole, as decompose_state keeps them.

@@ -103,10 +103,9 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverStat
   if (at + 3 > in.size()) throw std::runtime_error("a rank's check cut short");
   const double bad = in[at++];
   // The first in storage order over the ranks (a rank's own is its first).
-  if (bad != kNone && (figures_.finite.ok || bad < static_cast<double>(first_bad_))) {
-    first_bad_ = static_cast<std::size_t>(bad);
-    figures_.finite = non_finite_verdict(first_bad_);
-  }
+  if (bad != kNone &&
+      (figures_.finite.ok || static_cast<std::size_t>(bad) < figures_.finite.particle))
+    figures_.finite = non_finite_verdict(static_cast<std::size_t>(bad));
   const double fastest = in[at++], fastest2 = in[at++];
   if (fastest != kNone && (fastest2 > figures_.fastest.speed2 ||
                            (fastest2 == figures_.fastest.speed2 &&

@@ -58,8 +58,7 @@ class RankChecks {
   std::vector<std::vector<double>> load_work_, body_work_;  // per rank, in its order (no pressure)
   std::vector<double> pressure_nodes_;  // (pressure, node, x, y, z) from every rank
   std::size_t elastic_bodies_;
-  CheckFigures figures_;       // the first-found and largest, the extents, the probes
-  std::size_t first_bad_ = 0;  // the first non-finite particle so far (figures_.finite)
+  CheckFigures figures_;  // the first-found and largest, the extents, the probes
 };
 
 }  // namespace mpsolid

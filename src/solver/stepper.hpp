@@ -6,7 +6,6 @@
 // their implementations.
 #include <cstdint>
 #include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "kernels/model_common.hpp"

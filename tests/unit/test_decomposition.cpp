@@ -350,8 +350,11 @@ TEST(Decomposition, APartSentInPiecesArrivesWhole) {
     EXPECT_EQ(got.decomposition.starts, sent.decomposition.starts);
     EXPECT_EQ(got.layout.global_of, sent.layout.global_of);
     EXPECT_EQ(got.layout.owned.begin, sent.layout.owned.begin);
-    EXPECT_EQ(got.layout.owned_pieces.size(), sent.layout.owned_pieces.size());
-    EXPECT_EQ(got.layout.owned_hull().end, sent.layout.owned_hull().end);
+    ASSERT_EQ(got.layout.owned_pieces.size(), sent.layout.owned_pieces.size());
+    for (std::size_t k = 0; k < got.layout.owned_pieces.size(); ++k) {
+      EXPECT_EQ(got.layout.owned_pieces[k].begin, sent.layout.owned_pieces[k].begin);
+      EXPECT_EQ(got.layout.owned_pieces[k].end, sent.layout.owned_pieces[k].end);
+    }
     EXPECT_EQ(got.halo.peers, sent.halo.peers);
     EXPECT_EQ(got.halo.send, sent.halo.send);
     EXPECT_EQ(got.halo.receive, sent.halo.receive);
