@@ -121,22 +121,26 @@ Eigen::Vector3d momentum_of(const Eigen::Quaterniond& frame, const Eigen::Vector
   return frame * moments.cwiseProduct(frame.conjugate() * w);
 }
 
-void project_in_space(ParticleStore& p, RigidBody& body, double t, double dt, bool with_rotation) {
-  const Range r = body.range;
-  const Eigen::Matrix3d rotation = rotation_matrix(body);
+// In space: the impulse the step gave the body, its particles' momenta less
+// those of the rigid field they were placed with (spins included).
+std::array<double, kProjectionSums> impulse_term(const ParticleStore& p, const RigidBody& body,
+                                                 const Eigen::Matrix3d& rotation,
+                                                 const Eigen::Vector3d& w_old, std::size_t i,
+                                                 bool with_rotation) {
+  const Placed at = placed(body, rotation, w_old, i - body.range.begin);
+  const double m = 1.0 / p.inv_mass[i];
+  const Eigen::Vector3d dv = Eigen::Vector3d(p.vx[i], p.vy[i], p.vz[i]) - at.v;
+  Eigen::Vector3d dl = m * at.d.cross(dv);
+  if (with_rotation)
+    dl += (Eigen::Vector3d(p.omega_x[i], p.omega_y[i], p.omega[i]) - w_old) / p.inv_inertia[i];
+  return {m * dv[0], m * dv[1], m * dv[2], dl[0], dl[1], dl[2]};
+}
+
+void advance_in_space(ParticleStore& p, RigidBody& body,
+                      const std::array<double, kProjectionSums>& impulse, double t, double dt,
+                      bool with_rotation) {
   const Eigen::Vector3d v_old(body.vx, body.vy, body.vz);
   const Eigen::Vector3d w_old(body.omega_x, body.omega_y, body.omega);
-  // The impulse the step gave the body: its particles' momenta less those
-  // of the rigid field they were placed with (spins included).
-  const std::array<double, 6> impulse = ordered_sum<6>(r.begin, r.end, [&](std::size_t i) {
-    const Placed at = placed(body, rotation, w_old, i - r.begin);
-    const double m = 1.0 / p.inv_mass[i];
-    const Eigen::Vector3d dv = Eigen::Vector3d(p.vx[i], p.vy[i], p.vz[i]) - at.v;
-    Eigen::Vector3d dl = m * at.d.cross(dv);
-    if (with_rotation)
-      dl += (Eigen::Vector3d(p.omega_x[i], p.omega_y[i], p.omega[i]) - w_old) / p.inv_inertia[i];
-    return std::array<double, 6>{m * dv[0], m * dv[1], m * dv[2], dl[0], dl[1], dl[2]};
-  });
   const Eigen::Vector3d momentum =
       body.mass_total * v_old + Eigen::Vector3d(impulse[0], impulse[1], impulse[2]);
   const Eigen::Vector3d angular =
@@ -267,18 +271,55 @@ RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range)
   return body;
 }
 
+ProjectionTerms::ProjectionTerms(const ParticleStore& p, const RigidBody& body, bool with_rotation)
+    : p_(p), body_(body), with_rotation_(with_rotation) {
+  if (body.dimension != 3) return;
+  rotation_ = rotation_matrix(body);
+  w_old_ = {body.omega_x, body.omega_y, body.omega};
+}
+
+std::array<double, kProjectionSums> ProjectionTerms::operator()(std::size_t i) const {
+  const ParticleStore& p = p_;
+  const RigidBody& body = body_;
+  if (body.dimension == 3)
+    return impulse_term(p, body, rotation_, Eigen::Vector3d(w_old_[0], w_old_[1], w_old_[2]), i,
+                        with_rotation_);
+  // Linear momentum and angular momentum about the centroid (orbital + spin).
+  const double m = 1.0 / p.inv_mass[i];
+  const double spin = with_rotation_ ? p.omega[i] / p.inv_inertia[i] : 0.0;
+  return {m * p.vx[i],
+          m * p.vy[i],
+          m * cross(p.x[i] - body.xg, p.y[i] - body.yg, p.vx[i], p.vy[i]) + spin,
+          0.0,
+          0.0,
+          0.0};
+}
+
+RigidBody rigid_body_part(const RigidBody& whole, Range range,
+                          const std::vector<std::size_t>& places) {
+  RigidBody part = whole;
+  part.range = range;
+  for (auto [from, to] : {std::pair{&whole.dx0, &part.dx0}, std::pair{&whole.dy0, &part.dy0},
+                          std::pair{&whole.dz0, &part.dz0}}) {
+    if (from->empty()) continue;
+    to->resize(places.size());
+    for (std::size_t k = 0; k < places.size(); ++k) (*to)[k] = (*from)[places[k]];
+  }
+  return part;
+}
+
 void project_rigid_body(ParticleStore& p, RigidBody& body, double t, double dt,
                         bool with_rotation) {
-  if (p.dimension == 3) return project_in_space(p, body, t, dt, with_rotation);
-  const Range r = body.range;
-  // Linear momentum and angular momentum about the centroid (orbital + spin).
-  const auto [px, py, lz] = ordered_sum<3>(r.begin, r.end, [&](std::size_t i) {
-    const double m = 1.0 / p.inv_mass[i];
-    const double spin = with_rotation ? p.omega[i] / p.inv_inertia[i] : 0.0;
-    return std::array<double, 3>{
-        m * p.vx[i], m * p.vy[i],
-        m * cross(p.x[i] - body.xg, p.y[i] - body.yg, p.vx[i], p.vy[i]) + spin};
-  });
+  const ProjectionTerms term(p, body, with_rotation);
+  advance_rigid_body(p, body, ordered_sum<kProjectionSums>(body.range.begin, body.range.end, term),
+                     t, dt, with_rotation);
+}
+
+void advance_rigid_body(ParticleStore& p, RigidBody& body,
+                        const std::array<double, kProjectionSums>& sums, double t, double dt,
+                        bool with_rotation) {
+  if (body.dimension == 3) return advance_in_space(p, body, sums, t, dt, with_rotation);
+  const double px = sums[0], py = sums[1], lz = sums[2];
   // Without particle spins (models without rotation) only the orbital part counts.
   const double inertia = body.orbital_inertia + (with_rotation ? body.spin_inertia : 0.0);
   if (body.motion.on) {

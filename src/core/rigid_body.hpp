@@ -6,6 +6,7 @@
 // the pose. Positions never drift apart over millions of steps. In space the
 // orientation is a quaternion and the rotation over a step the exact
 // torque-free splitting of rigid_rotation3.hpp about the principal axes.
+#include <Eigen/Core>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -81,6 +82,12 @@ std::array<double, 4> rotation_from_start(const RigidBody& body);
 // y0 (and z0 in space).
 RigidBody make_rigid_body(const ParticleStore& p, std::string name, Range range);
 
+// The part of a body split between ranks one rank holds: its pose and
+// make-up, with `range` the rank's own particles of it (storage range here)
+// and their offsets, the k-th the whole body's `places[k]`-th.
+RigidBody rigid_body_part(const RigidBody& whole, Range range,
+                          const std::vector<std::size_t>& places);
+
 // Sets the body's velocity and angular velocity (the plane's about z:
 // spin[2]), with, in space, its angular momentum; places its particles.
 void set_rigid_motion(ParticleStore& p, RigidBody& body, const double velocity[3],
@@ -89,8 +96,36 @@ void set_rigid_motion(ParticleStore& p, RigidBody& body, const double velocity[3
 // Projects the particles' velocities onto a rigid motion and advances the pose
 // by dt. Uses the start-of-step positions still stored in p.x, p.y. A driven
 // body takes its motion's velocity over the step from time t instead, and
-// adds its driver's work.
+// adds its driver's work. It is the ordered sum of ProjectionTerms over the
+// body's particles followed by advance_rigid_body.
 void project_rigid_body(ParticleStore& p, RigidBody& body, double t, double dt, bool with_rotation);
+
+// The projection's sums per particle: in the plane the linear momentum and
+// the angular momentum about the centroid (then three zeros); in space the
+// impulse beyond the rigid field the particles were placed with, linear and
+// angular. A body split between ranks adds them over the ranks in the
+// serial order (src/solver/split_rigid_bodies.hpp), each rank over its own
+// particles, which `range` and the offsets then cover.
+inline constexpr std::size_t kProjectionSums = 6;
+class ProjectionTerms {
+ public:
+  ProjectionTerms(const ParticleStore& p, const RigidBody& body, bool with_rotation);
+  // Particle i of the store (the body's i - range.begin-th here).
+  std::array<double, kProjectionSums> operator()(std::size_t i) const;
+
+ private:
+  const ParticleStore& p_;
+  const RigidBody& body_;
+  bool with_rotation_;
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();  // in space: from the start
+  std::array<double, 3> w_old_{};
+};
+
+// Advances the pose from the projection's sums over the whole body and
+// places the particles `range` covers.
+void advance_rigid_body(ParticleStore& p, RigidBody& body,
+                        const std::array<double, kProjectionSums>& sums, double t, double dt,
+                        bool with_rotation);
 
 // Places every particle of the body at the pose with the rigid velocity field
 // (and, with rotation, each particle's orientation and spin the body's).

@@ -77,10 +77,12 @@ struct RankTimes {
 };
 
 // How a run over ranks is cut (src/solver/part_cut.hpp): "slabs" or
-// "bands along x" (y, z), with the ghosts each cut was estimated to imply.
+// "bands along x" (y, z), with the ghosts each cut was estimated to imply,
+// and the rigid bodies it splits between ranks.
 struct CutFacts {
   std::string kind;
   double slab_ghosts = 0, band_ghosts = 0;
+  std::vector<std::string> split_rigid_bodies;
 };
 
 // What crossed between the threads of a team stepping as ranks

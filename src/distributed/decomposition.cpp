@@ -13,6 +13,19 @@ int Decomposition::owner_of(std::size_t i) const {
   return owners.empty() ? static_cast<int>(piece) : owners[piece];
 }
 
+std::vector<int> Decomposition::owners_of(Range r) const {
+  std::vector<int> out;
+  if (r.empty()) return out;
+  auto k = static_cast<std::size_t>(std::upper_bound(starts.begin(), starts.end() - 1, r.begin) -
+                                    starts.begin()) -
+           1;
+  for (; k + 1 < starts.size() && starts[k] < r.end; ++k)
+    if (starts[k + 1] > starts[k]) out.push_back(owners.empty() ? static_cast<int>(k) : owners[k]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 Range Decomposition::owned(int rank) const {
   if (!owners.empty()) throw std::logic_error("Decomposition::owned: a cut in pieces, not slabs");
   return {starts[static_cast<std::size_t>(rank)], starts[static_cast<std::size_t>(rank) + 1]};

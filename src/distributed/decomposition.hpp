@@ -38,6 +38,8 @@ struct Decomposition {
   // Every rank's pieces (one pass over the cut).
   std::vector<std::vector<Range>> pieces_by_rank() const;
   int owner_of(std::size_t i) const;
+  // The ranks owning some of `r`, ascending.
+  std::vector<int> owners_of(Range r) const;
   bool operator==(const Decomposition&) const = default;
 };
 

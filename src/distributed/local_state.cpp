@@ -143,8 +143,8 @@ Ownership ownership(Range global, const LocalLayout& layout) {
   return held == 0 ? Ownership::elsewhere : Ownership::split;
 }
 
-// The items (rigid bodies, loads) whose particles this rank owns, in local
-// indices; one whose particles are split between ranks is refused.
+// The loads whose particles this rank owns, in local indices; one whose
+// particles are split between ranks is refused.
 template <class Item>
 std::vector<Item> owned_items(const std::vector<Item>& items, const LocalLayout& layout,
                               const std::string& what) {
@@ -169,7 +169,15 @@ SolverState local_solver_state(const SolverState& global, const LocalLayout& lay
   s.step = global.step;
   s.peak_work = global.peak_work;
   s.damping = global.damping;
-  s.rigid_bodies = owned_items(global.rigid_bodies, layout, "rigid body");
+  // A rigid body may be split: each rank its own particles of it.
+  for (const RigidBody& body : global.rigid_bodies) {
+    const Range mine = layout.owned_within(body.range);
+    if (mine.empty()) continue;
+    std::vector<std::size_t> places;
+    for (std::size_t i = mine.begin; i < mine.end; ++i)
+      places.push_back(layout.global_of[i] - body.range.begin);
+    s.rigid_bodies.push_back(rigid_body_part(body, mine, places));
+  }
   // A force on a body reads all its particles (its centroid): the body is
   // owned whole. A pressure may be split: every rank holds it (its running
   // step is the same on all), positioning the nodes it hosts.

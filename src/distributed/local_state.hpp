@@ -65,10 +65,11 @@ BondTable local_bonds(const BondTable& global, const ParticleStore& local,
                       const LocalLayout& layout);
 
 // The whole local solver state: particles, bonds, and the rigid bodies,
-// loads and holds of the owned particles in local indices. A rigid body or
-// a loaded body must be owned by one rank (its projection and its load's
-// share sum over all of it); one split between ranks is refused
-// (std::invalid_argument). Contact: every candidate of the run, in local
+// loads and holds of the owned particles in local indices. A rigid body
+// split between ranks is held by each of its ranks over its own particles
+// (src/solver/split_rigid_bodies.hpp); a body under a force must be owned
+// by one rank (its load's share sums over all of it): one split between
+// ranks is refused (std::invalid_argument). Contact: every candidate of the run, in local
 // indices (the layout must hold them all), with no list yet.
 SolverState local_solver_state(const SolverState& global, const LocalLayout& layout);
 

@@ -1,5 +1,6 @@
 #include "src/distributed/part_message.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -375,6 +376,23 @@ void read_owned_items(const std::vector<double>& in, std::size_t& at, SolverStat
   for (RigidBody& b : get_items<RigidBody>(r, get_body)) head.rigid_bodies.push_back(std::move(b));
   for (StepLoad& l : get_items<StepLoad>(r, get_load)) head.loads.push_back(std::move(l));
   if (!r.done()) throw std::runtime_error("a rank's bodies and loads: values left over");
+}
+
+void merge_rigid_bodies(SolverState& head, const std::vector<std::string>& body_names) {
+  std::vector<RigidBody> bodies;
+  for (RigidBody& b : head.rigid_bodies) {
+    for (std::size_t k = 0; k < body_names.size() && k < head.body_ranges.size(); ++k)
+      if (body_names[k] == b.name) b.range = head.body_ranges[k];
+    b.dx0.clear();
+    b.dy0.clear();
+    b.dz0.clear();
+    if (std::none_of(bodies.begin(), bodies.end(),
+                     [&](const RigidBody& kept) { return kept.name == b.name; }))
+      bodies.push_back(std::move(b));
+  }
+  std::sort(bodies.begin(), bodies.end(),
+            [](const RigidBody& a, const RigidBody& b) { return a.range.begin < b.range.begin; });
+  head.rigid_bodies = std::move(bodies);
 }
 
 }  // namespace mpsolid

@@ -51,5 +51,11 @@ void append_owned_items(const SolverState& local, const LocalLayout& layout,
 // Reads them from in[at...] onto `head`'s rigid bodies and loads; `at` moves
 // past them.
 void read_owned_items(const std::vector<double>& in, std::size_t& at, SolverState& head);
+// Each rigid body of `head` once (a body split between ranks comes from each
+// of its ranks, over its own particles), over its whole storage range (body
+// k of `body_names` is head.body_ranges[k]), in storage order, without its
+// particles' offsets: rank 0 keeps a body's pose and make-up, and places no
+// particle.
+void merge_rigid_bodies(SolverState& head, const std::vector<std::string>& body_names);
 
 }  // namespace mpsolid

@@ -45,16 +45,19 @@ void write_fields(StepLoad& l, const double* in) {
   if (l.is_pressure() && l.active) pressure_forces(l);
 }
 
-// Whether a slice of `owned` carries the item: a rigid body or a force
-// when one of its ranges holds it whole (it is kept whole); a pressure when
-// the slice carries the shared items (every part holds it, with the same
-// running step).
+// Whether a slice of `owned` carries the item: a force when one of its
+// ranges holds it whole (it is kept whole); a rigid body when they hold any
+// of it (every rank holding some of a split body has its whole pose); a
+// pressure when the slice carries the shared items (every part holds it,
+// with the same running step).
 bool holds(Range item, const std::vector<Range>& owned) {
   return std::any_of(owned.begin(), owned.end(),
                      [&](Range r) { return item.begin >= r.begin && item.end <= r.end; });
 }
 bool carries(const RigidBody& b, const std::vector<Range>& owned, bool) {
-  return holds(b.range, owned);
+  return std::any_of(owned.begin(), owned.end(), [&](Range r) {
+    return std::max(b.range.begin, r.begin) < std::min(b.range.end, r.end);
+  });
 }
 bool carries(const StepLoad& l, const std::vector<Range>& owned, bool shared) {
   return l.is_pressure() ? shared : holds(l.range, owned);

@@ -1,7 +1,8 @@
 #pragma once
 // A rank's slice of a state (docs/mpi.md): its owned particles' state arrays
 // (storage ranges `owned`: a slab's one, or a cut's pieces), then the evolving fields of the rigid
-// bodies and loads inside that range, in order, as doubles, and of every pressure load (which may
+// bodies with particles there (a rigid body split between ranks: each of its ranks carries its
+// pose) and loads inside that range, in order, as doubles, and of every pressure load (which may
 // be split: each rank holds it, with the same running step) when the slice carries the shared
 // items. The whole state writes and reads it at the rank's global range; the rank's local state
 // (where every body and load inside its owned range is its own) reads and writes it at its local

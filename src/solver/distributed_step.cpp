@@ -69,6 +69,8 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
     if (spec.bodies[b].kind == Kind::elastic) part.extent_ranges.push_back(local.body_ranges[b]);
   part.probes = std::move(local.probes);
   part.body_ranges = local.body_ranges;
+  part.split_rigid =
+      split_rigid_bodies(spec, part.body_ranges, part.decomposition, part.local.rigid_bodies);
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
@@ -86,6 +88,8 @@ void advance_rank_part(RankPart& part, const RankGroup& world, double dt, std::i
     rebuild_rank_contact(part.contact, part.local, part.layout, world, part.halo_cost);
   OverRanks place(part, world);
   BodyKicks kicks(part.local.rigid_bodies.size());
+  for (const SplitRigidBody& b : part.split_rigid)
+    if (b.local >= 0) kicks.mark_split(static_cast<std::size_t>(b.local));
   std::visit([&](auto& model) { steps_in_order(model, part.local, dt, steps, kicks, place); },
              part.model);
   part.local.step += steps;

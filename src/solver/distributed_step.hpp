@@ -26,6 +26,7 @@
 #include "src/distributed/part_message.hpp"
 #include "src/distributed/rank_group.hpp"
 #include "src/solver/distributed_contact.hpp"
+#include "src/solver/split_rigid_bodies.hpp"
 #include "src/solver/step.hpp"
 
 namespace mpsolid {
@@ -48,6 +49,9 @@ struct RankPart {
   std::vector<Range> extent_ranges;
   std::vector<std::size_t> probes;
   std::vector<Range> body_ranges;  // every body's (global storage indices)
+  // The rigid bodies the cut gives to more than one rank, projected over
+  // the ranks.
+  std::vector<SplitRigidBody> split_rigid;
   // The owned particles bonded to no ghost (local indices; empty at its
   // end when there are none): their forces read only owned fields.
   Range bonded_to_owned_only;
@@ -123,6 +127,12 @@ class OverRanks {
   void contact_pass(SolverState& s, std::int64_t step) {
     RankPart& part = halo_.part;
     rank_contact_pass(part.contact, s, part.layout, halo_.world, step, part.halo_cost);
+  }
+  void project_split_bodies(SolverState& s, double dt, std::int64_t step, bool with_rotation) {
+    RankPart& part = halo_.part;
+    if (part.split_rigid.empty()) return;
+    project_split_rigid_bodies(part.split_rigid, s, part.layout, part.decomposition, halo_.world,
+                               part.halo_cost, static_cast<double>(step) * dt, dt, with_rotation);
   }
   PassTime time(Phase phase) {
     RankTimes& t = halo_.part.times;

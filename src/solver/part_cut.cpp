@@ -18,16 +18,6 @@ double coordinate(const Point3& p, int axis) {
   return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
 }
 
-// Bodies kept whole by either cut: rigid ones and those under a force.
-std::vector<bool> kept_whole(const CaseSpec& spec) {
-  std::vector<bool> whole(spec.bodies.size(), false);
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
-    whole[b] = spec.bodies[b].kind == Kind::rigid;
-  for (const LoadSpec& l : spec.loads)
-    if (l.type != LoadSpec::Type::pressure) whole[static_cast<std::size_t>(l.body)] = true;
-  return whole;
-}
-
 // What one pass over the sites finds: the case's box, and per body the axis
 // its fill advances along last (its coordinate never falls in fill order:
 // rows along x in the plane advance along y), with the coordinates of the
@@ -143,7 +133,7 @@ CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
   if (!bands) return out;
   // Each site's band, a body kept whole in its first site's; the pieces
   // are the runs of one band in storage order.
-  const std::vector<bool> whole = kept_whole(spec);
+  const std::vector<bool> whole = bodies_kept_whole(spec, ranks);
   const auto band_of = [&](double c) {
     const std::size_t bin = bin_of(c);
     return static_cast<int>(std::upper_bound(first_bin.begin() + 1, first_bin.end() - 1, bin) -

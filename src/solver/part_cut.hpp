@@ -7,7 +7,9 @@
 // per row it crosses). A long body stored along its length is cut along its
 // length by slabs and across it by bands. The cut chosen is the one whose
 // halo, estimated from the sites within a bond's reach of each cut, is the
-// smaller. Rigid bodies and bodies under a force are kept whole by both.
+// smaller. Bodies under a force and rigid bodies small against a rank's
+// share are kept whole by both (bodies_kept_whole); a larger rigid body
+// falls where the cut puts it, split between ranks if need be.
 #include <string>
 
 #include "src/case/case_spec.hpp"

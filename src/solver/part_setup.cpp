@@ -144,21 +144,33 @@ std::vector<std::size_t> probe_particles(const CaseSpec& spec, const BodyLayout&
   return out;
 }
 
-// A rigid body another rank owns whose particles this part holds as ghosts:
-// they move with it from the start (set_rigid_motion places them), so the
-// body is made whole on the side, set moving, and its held particles copied.
-void place_ghost_rigid_body(const CaseSpec& spec, const BodyLayout& layout, std::size_t b,
-                            Range held, bool with_rotation, ParticleStore& p) {
-  const BodySpec& body = spec.bodies[b];
-  ParticleStore whole;
+// A rigid body made whole on the side, from all its sites: its make-up (and
+// those of its particles), as set_up makes it.
+struct WholeRigidBody {
+  ParticleStore particles;
+  RigidBody body;
+};
+WholeRigidBody whole_rigid_body(const CaseSpec& spec, const BodyLayout& layout, std::size_t b) {
+  WholeRigidBody w;
+  ParticleStore& whole = w.particles;
   whole.dimension = spec.dimension;
   whole.resize(layout.range[b].size());
   visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
     place_particle(whole, k, spec, b, at, layout.first_id[b] + k);
   });
   whole.set_kind_ranges();
-  RigidBody rigid = make_rigid_body(whole, body.name, whole.all());
-  rigid.motion = body.motion;
+  w.body = make_rigid_body(whole, spec.bodies[b].name, whole.all());
+  w.body.motion = spec.bodies[b].motion;
+  return w;
+}
+
+// A rigid body another rank owns whose particles this part holds as ghosts:
+// they move with it from the start (set_rigid_motion places them), so the
+// body is made whole on the side, set moving, and its held particles copied.
+void place_ghost_rigid_body(const CaseSpec& spec, const BodyLayout& layout, std::size_t b,
+                            Range held, bool with_rotation, ParticleStore& p) {
+  const BodySpec& body = spec.bodies[b];
+  auto [whole, rigid] = whole_rigid_body(spec, layout, b);
   set_rigid_motion(whole, rigid, body.velocity, body.spin, with_rotation);
   for (std::size_t w = held.begin; w < held.end; ++w) {
     const auto k = static_cast<std::size_t>(p.id[w]) - layout.first_id[b];
@@ -178,14 +190,24 @@ double bond_reach(const CaseSpec& spec) {
   return case_bond_geometry(spec).re * (1.0 + 1e-9) + 1e-9 * spec.l0;
 }
 
+std::vector<bool> bodies_kept_whole(const CaseSpec& spec, int ranks) {
+  const BodyLayout layout = body_layout(spec);
+  const double share = static_cast<double>(layout.total) / std::max(ranks, 1);
+  std::vector<bool> whole(spec.bodies.size(), false);
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    whole[b] = spec.bodies[b].kind == Kind::rigid &&
+               static_cast<double>(layout.range[b].size()) <= 0.1 * share;
+  for (const LoadSpec& l : spec.loads)
+    if (l.type != LoadSpec::Type::pressure) whole[static_cast<std::size_t>(l.body)] = true;
+  return whole;
+}
+
 Decomposition decompose_case(const CaseSpec& spec, int ranks) {
   const BodyLayout layout = body_layout(spec);
+  const std::vector<bool> kept = bodies_kept_whole(spec, ranks);
   std::vector<Range> whole;
   for (const std::size_t b : layout.order)
-    if (spec.bodies[b].kind == Kind::rigid) whole.push_back(layout.range[b]);
-  for (const LoadSpec& l : spec.loads)
-    if (l.type != LoadSpec::Type::pressure)
-      whole.push_back(layout.range[static_cast<std::size_t>(l.body)]);
+    if (kept[b]) whole.push_back(layout.range[b]);
   return decompose_count(layout.total, ranks, whole);
 }
 
@@ -269,13 +291,21 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   ParticleStore& p = s.particles;
   const std::vector<std::uint32_t>& global_of = window.global_of;
 
-  // Rigid bodies and loaded bodies this rank owns, whole (set_up's order).
+  // The rigid bodies this rank owns particles of (set_up's order); one split
+  // between ranks made whole on the side, its held particles kept.
   for (const std::size_t b : layout.order) {
     const BodySpec& body = spec.bodies[b];
     if (body.kind != Kind::rigid || !overlaps(layout.range[b], mine)) continue;
-    if (!inside(layout.range[b], mine)) throw split("rigid body", body.name);
-    s.rigid_bodies.push_back(make_rigid_body(p, body.name, s.body_ranges[b]));
-    s.rigid_bodies.back().motion = body.motion;
+    if (inside(layout.range[b], mine)) {
+      s.rigid_bodies.push_back(make_rigid_body(p, body.name, s.body_ranges[b]));
+      s.rigid_bodies.back().motion = body.motion;
+      continue;
+    }
+    const Range held = s.body_ranges[b];
+    std::vector<std::size_t> places;
+    for (std::size_t w = held.begin; w < held.end; ++w)
+      places.push_back(static_cast<std::size_t>(p.id[w]) - layout.first_id[b]);
+    s.rigid_bodies.push_back(rigid_body_part(whole_rigid_body(spec, layout, b).body, held, places));
   }
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].hold != Hold::none && !s.body_ranges[b].empty())
@@ -314,9 +344,11 @@ LocalPart set_up_part(const CaseSpec& spec, const Decomposition& d, int rank,
   const std::vector<std::array<double, 3>> centres = centroids(spec, layout, s.body_ranges);
   const bool with_rotation = model_info(spec.model).uses_rotation;
   apply_initial_motion(s, spec, with_rotation, &centres);
+  // Those it holds only ghosts of (the part of a body it owns some of
+  // placed every particle of it held here).
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
     if (spec.bodies[b].kind == Kind::rigid && !s.body_ranges[b].empty() &&
-        !inside(layout.range[b], mine))
+        !overlaps(layout.range[b], mine))
       place_ghost_rigid_body(spec, layout, b, s.body_ranges[b], with_rotation, p);
 
   // The part in window indices (the cut there: each rank's first held

@@ -176,7 +176,14 @@ CheckFigures RankChecks::finish(const SolverState& global, const Decomposition& 
     work += f.readings.load_work.back();
   }
   std::fill(next.begin(), next.end(), 0);
-  for (const RigidBody& body : global.rigid_bodies) work += take(body_work_, body.range);
+  // A split rigid body's work is every one of its ranks' (the same): its
+  // first particle's owner's counted, the others' passed over.
+  for (const RigidBody& body : global.rigid_bodies) {
+    const double w = take(body_work_, body.range);
+    for (const int r : d.owners_of(body.range))
+      if (r != d.owner_of(body.range.begin)) next[static_cast<std::size_t>(r)]++;
+    work += w;
+  }
   f.diagnostics.external_work = work;
   return f;
 }

@@ -288,7 +288,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   // names it), then each follower's part.
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
-  cut_ = {"slabs", 0.0, 0.0};
+  cut_ = {"slabs", 0.0, 0.0, {}};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   // Without contact (whose candidates the ranks share as they set up,
   // which rank 0's part cut from its copy would not join), each follower
@@ -325,7 +325,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   followers.send_case(spec.resolved_toml);
   const CaseCut chosen = cut_case(spec, world.size(), followers.cut());
   const Decomposition& cut = chosen.decomposition;
-  cut_ = {chosen.kind, chosen.slab_ghosts, chosen.band_ghosts};
+  cut_ = {chosen.kind, chosen.slab_ghosts, chosen.band_ghosts, {}};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(cut));
   try {
@@ -349,10 +349,11 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
     contact_copy_ = std::make_unique<ContactCopy>(
         copy_contact_candidates(mine, parts_->part.layout, head.contact));
   exchange(head, 0, {.head = true});
-  // In storage order (with a cut in pieces, the ranks' are interleaved).
-  std::stable_sort(
-      head.rigid_bodies.begin(), head.rigid_bodies.end(),
-      [](const RigidBody& a, const RigidBody& b) { return a.range.begin < b.range.begin; });
+  // Each rigid body once, in storage order (with a cut in pieces the
+  // ranks' are interleaved, and a split body comes from each of its ranks).
+  std::vector<std::string> names;
+  for (const BodySpec& b : spec.bodies) names.push_back(b.name);
+  merge_rigid_bodies(head, names);
   // Every part holds each pressure load (a gas load too) whole, with the
   // same running step: rank 0 keeps its own (its nodes' weights over its
   // own part, which only the ranks' steps read), over the body's global
@@ -367,6 +368,9 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
         kept.range = head.body_ranges[static_cast<std::size_t>(b)];
   }
   put_loads_in_case_order(spec, head.loads);
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+    if (spec.bodies[b].kind == Kind::rigid && cut.owners_of(head.body_ranges[b]).size() > 1)
+      cut_.split_rigid_bodies.push_back(spec.bodies[b].name);
   counts_.particles = cut.starts.back();
 }
 

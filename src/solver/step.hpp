@@ -3,7 +3,8 @@
 // physics itself:
 //   (halo of motion ->) (contact pass ->) loads switch on -> strain pass (with
 //   its halos) -> force/torque pass -> loads, holds, integrate, half angles ->
-//   rigid-body projection.
+//   rigid-body projection (of a body split between ranks: over the ranks,
+//   after the whole integration).
 // Where it runs is a `Place`: OneRank (the whole state on this process; every
 // halo does nothing) or OverRanks (a rank's local state, src/solver/
 // distributed_step.hpp: its owned particles, its ghosts' halos and contact
@@ -41,11 +42,15 @@ namespace mpsolid {
 // Counts, per rigid body, its particles kicked in the current step: the
 // thread that kicks the last of them projects the body (the projection reads
 // all of them), whichever chunks and threads kicked the rest.
+// A body split between ranks is projected by every rank holding some of it
+// after the step's integration (its place's project_split_bodies): never here.
 class BodyKicks {
  public:
-  explicit BodyKicks(std::size_t bodies) : kicked_(bodies) {}
+  explicit BodyKicks(std::size_t bodies) : kicked_(bodies), split_(bodies, false) {}
+  void mark_split(std::size_t k) { split_[k] = true; }
   // Adds `count` kicked particles of body k; true for the call that completes it.
   bool completes(std::size_t k, std::size_t count, std::size_t size) {
+    if (split_[k]) return false;
     if (kicked_[k].fetch_add(count, std::memory_order_acq_rel) + count != size) return false;
     kicked_[k].store(0, std::memory_order_relaxed);  // read again only after the step's barrier
     return true;
@@ -53,6 +58,7 @@ class BodyKicks {
 
  private:
   std::vector<std::atomic<std::size_t>> kicked_;
+  std::vector<bool> split_;
 };
 
 // Loads, holds, kick, drift and half angles of the moving particles in one
@@ -109,6 +115,8 @@ class OneRank {
   // Every pressure's nodes are this place's own.
   const GatherParts* gather_parts() const { return nullptr; }
   void contact_pass(SolverState& s, std::int64_t step) { mpsolid::contact_pass(s, step); }
+  // Every rigid body is whole here.
+  void project_split_bodies(SolverState&, double, std::int64_t, bool) {}
   TeamPhase time(Phase phase) { return TeamPhase(timers_, phase); }
 
  private:
@@ -197,6 +205,8 @@ void step_once(Model& model, SolverState& s, double dt, std::int64_t step, BodyK
     forces_and_motion({moving.begin, inner.begin});
     forces_and_motion({inner.end, moving.end});
   }
+  // After every particle's kick (the projection reads all of a body's).
+  place.project_split_bodies(s, dt, step, rot);
 }
 
 // Advances `steps` steps of `dt` at `place` (s.step is the caller's to

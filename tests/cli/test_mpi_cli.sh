@@ -20,6 +20,9 @@
 #  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
 #    during the shock's reflection, gives the serial bits, and so does the
 #    rod in the gas at 3 ranks, rank 0 holding no copy, no slice moving;
+#  - a rigid rail along a strip, split between ranks by the cut (bands or
+#    slabs), gives the serial bits at 2 and 3 ranks and resumed across rank
+#    counts, run.json naming it split;
 #  - SIGTERM to the launcher stops a 2-rank run with a checkpoint that
 #    resumes to the serial bits;
 #  - a bad case gets exit 2, one message (rank 0's) and nothing written;
@@ -160,6 +163,53 @@ mpi 2 cut_bad run "$CASE" "${SETS[@]}" --cut diagonal --out "$TMP/cut_bad"
 [[ $rc -eq 2 && ! -e "$TMP/cut_bad" ]] && grep -q "diagonal not in {auto,slabs,bands}" \
   "$TMP/cut_bad.err" && ok "--cut diagonal: exit 2, the allowed values named, nothing written" ||
   fail "--cut diagonal: exit $rc"
+
+# A rigid rail along a strip, a quarter of the particles (more than a tenth
+# of a rank's share): the cut splits it between ranks (bands at 2 and 3,
+# slabs at 4 when asked), each rank holding some of it projects it with the
+# others; the serial bits, run.json naming it split, and a checkpoint
+# written at 3 ranks resumes at 2 to the same bits.
+RAIL=$TMP/rail.toml
+cat >"$RAIL" <<'TOML'
+l0 = 1e-3
+[materials.rubber]
+E = 2.8e6
+nu = 0.45
+rho = 1010.0
+[bodies.strip]
+kind = "elastic"
+material = "rubber"
+x = [0.0, 0.12]
+y = [0.0, 0.008]
+[bodies.rail]
+kind = "rigid"
+material = "rubber"
+x = [0.0, 0.12]
+y = [-0.003, 0.0]
+velocity = [0.2, 0.5]
+spin = 8.0
+[time]
+dt = "auto"
+end = 0.004
+[output]
+frame_interval = 0.001
+checkpoint_interval = 0.001
+history_interval = 1e-4
+TOML
+at_2_and_3 "a rail split between ranks" rail "$TMP/rail_serial" "$RAIL"
+mpi 4 rail_slabs run "$RAIL" --cut slabs --out "$TMP/rail_slabs"
+[[ $rc -eq 0 ]] && same "the rail on slabs at 4 ranks" "$TMP/rail_slabs" "$TMP/rail_serial" ||
+  fail "the rail on slabs: exit $rc"
+split=$(/usr/bin/python3 -c '
+import json, sys
+print(" | ".join(",".join(json.load(open(p))["cut"]["split_rigid_bodies"]) for p in sys.argv[1:]))' \
+  "$TMP/rail2/run.json" "$TMP/rail3/run.json" "$TMP/rail_slabs/run.json" 2>&1)
+[[ $split == "rail | rail | rail" ]] && ok "the rail: run.json names it split at 2, 3 ranks and on slabs at 4" ||
+  fail "the rail: run.json's split rigid bodies: $split"
+mpi 3 rail_half run "$RAIL" --set time.end=0.002 --out "$TMP/rail_half"
+mpi 2 rail_resume resume "$TMP/rail_half" --set time.end=0.004
+[[ $rc -eq 0 ]] && same "the rail at 3 ranks, resumed at 2" "$TMP/rail_half" "$TMP/rail_serial" ||
+  fail "the rail resumed at 2 ranks: exit $rc"
 
 # A 2-rank run NAME with SETTINGS against the serial run in $TMP/sparse_serial:
 # the same outputs, and each rank's slice moved to rank 0 MOVES times

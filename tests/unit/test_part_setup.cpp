@@ -68,14 +68,12 @@ std::vector<LocalPart> parts_set_up_alone(const CaseSpec& spec, const Decomposit
   return parts;
 }
 
-// Each rank's part both ways, at several rank counts.
-void expect_the_whole_states_parts(const std::string& case_file,
-                                   const std::vector<std::string>& overrides = {}) {
-  const Whole w = whole_state(case_file, overrides);
+// Each rank's part of the cut `d` both ways.
+void expect_the_same_parts(const std::string& case_file, const Whole& w, const Decomposition& d) {
   const CaseSpec& spec = w.spec;
   const SolverState& global = w.state;
-  for (const int ranks : {2, 3, 5}) {
-    const Decomposition d = decompose_state(global, ranks);
+  const int ranks = d.ranks();
+  {
     const std::vector<LocalPart> parts = parts_set_up_alone(spec, d);
     for (int r = 0; r < ranks; ++r) {
       const std::vector<double> whole = message_of(local_part(global, d, r));
@@ -89,6 +87,14 @@ void expect_the_whole_states_parts(const std::string& case_file,
           << " (" << whole[first] << " from the whole state, " << alone[first] << " alone)";
     }
   }
+}
+
+// Each rank's part both ways, at several rank counts.
+void expect_the_whole_states_parts(const std::string& case_file,
+                                   const std::vector<std::string>& overrides = {}) {
+  const Whole w = whole_state(case_file, overrides);
+  for (const int ranks : {2, 3, 5})
+    expect_the_same_parts(case_file, w, decompose_state(w.state, ranks));
 }
 
 TEST(PartSetUp, TheRodWithItsWallPlateAndForce) {
@@ -170,6 +176,11 @@ TEST(PartSetUp, TheRodStruckThroughAGas) {
 // up alone on the cut made from the case (decompose_case): the bond table's
 // count and hash (the ranks hashing in turn, threads as ranks), and every
 // rigid body and load, are the whole state's.
+std::vector<std::string> body_names(const CaseSpec& spec) {
+  std::vector<std::string> names;
+  for (const BodySpec& b : spec.bodies) names.push_back(b.name);
+  return names;
+}
 LocalLayout whole_layout(const SolverState& s) {
   LocalLayout layout;
   layout.owned = s.particles.all();
@@ -180,7 +191,13 @@ void expect_the_whole_states_head(const std::string& case_file,
                                   const std::vector<std::string>& overrides = {}) {
   const Whole w = whole_state(case_file, overrides);
   std::vector<double> whole_items;
-  append_owned_items(w.state, whole_layout(w.state), whole_items);
+  {
+    // Rank 0 keeps each rigid body's pose and make-up, not its particles'
+    // offsets.
+    SolverState whole = w.state;
+    merge_rigid_bodies(whole, body_names(w.spec));
+    append_owned_items(whole, whole_layout(whole), whole_items);
+  }
   for (const int ranks : {2, 3, 5}) {
     SCOPED_TRACE(case_file + ", " + std::to_string(ranks) + " ranks");
     const Decomposition d = decompose_case(w.spec, ranks);
@@ -203,6 +220,8 @@ void expect_the_whole_states_head(const std::string& case_file,
       EXPECT_EQ(at, mine.size());
     }
     put_loads_in_case_order(w.spec, head.loads);
+    head.body_ranges = w.state.body_ranges;
+    merge_rigid_bodies(head, body_names(w.spec));
     std::vector<double> head_items;
     append_owned_items(head, whole_layout(head), head_items);
     EXPECT_TRUE(head_items == whole_items);
@@ -217,8 +236,31 @@ TEST(PartSetUp, TheRanksGiveTheWholeBondTablesFactsAndEveryBodyAndLoad) {
   expect_the_whole_states_head("cases/tumbling_brick.toml");
 }
 
-// A cut through the plate (a rigid body) is refused both ways.
-TEST(PartSetUp, ARigidBodyCutInTwoIsRefused) {
+// A rigid body split between ranks: each rank's part of it (its own
+// particles' offsets, the whole body's pose and make-up, its ghosts placed)
+// the same both ways, cut in slabs through it or in pieces dealt round.
+TEST(PartSetUp, RigidBodiesSplitBetweenRanks) {
+  for (const std::string file : {"cases/holed_plate_grips.toml", "cases/tumbling_brick.toml"}) {
+    const Whole w = whole_state(file, {});
+    const Range body = w.state.rigid_bodies.front().range;
+    const std::size_t n = w.state.particles.size();
+    Decomposition slabs;
+    slabs.starts = {0, body.begin + body.size() / 3 + 5, body.begin + 2 * body.size() / 3 + 7, n};
+    expect_the_same_parts(file, w, slabs);
+    std::vector<std::size_t> starts;
+    std::vector<int> owners;
+    for (std::size_t b = 0; b < n; b += 61) {
+      starts.push_back(b);
+      owners.push_back(static_cast<int>(starts.size() % 3));
+    }
+    starts.push_back(n);
+    expect_the_same_parts(file, w, decomposition_in_pieces(starts, owners, 3));
+  }
+}
+
+// A cut through the plate (a rigid body under a force, whose share and
+// centroid sum over all of it) is refused both ways.
+TEST(PartSetUp, ABodyUnderAForceCutInTwoIsRefused) {
   const Whole w = whole_state("cases/shock_rod.toml", {});
   std::size_t b = 0;
   while (w.spec.bodies[b].name != "plate") ++b;
