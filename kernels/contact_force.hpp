@@ -67,13 +67,12 @@ inline void compute_contact_forces(ContactState& c, const ParticleStore& p, Rang
 
 // Adds the contact forces of the candidates stored in `block` to fx, fy.
 inline void add_contact_forces(ParticleStore& p, const ContactState& c, Range block) {
-  const Range r = c.candidates_in(block);
-  for (std::size_t a = r.begin; a < r.end; ++a) {
+  const bool space = !c.force_z.empty();
+  c.for_candidates_in(block, [&](std::size_t a) {
     p.fx[c.candidates[a]] += c.force_x[a];
     p.fy[c.candidates[a]] += c.force_y[a];
-  }
-  if (!c.force_z.empty())
-    for (std::size_t a = r.begin; a < r.end; ++a) p.fz[c.candidates[a]] += c.force_z[a];
+    if (space) p.fz[c.candidates[a]] += c.force_z[a];
+  });
 }
 
 // Candidate a's share of the contact energy: half of each of its pairs'.

@@ -10,17 +10,19 @@
 namespace mpsolid {
 
 namespace {
-// Candidates a and b may touch: not in one group, not bonded.
+// Candidates a and b may touch: not in one group, not bonded. (A row is
+// searched whole: on a rank's part cut in pieces its partners need not
+// ascend in local index.)
 bool may_touch(const ContactState& c, const BondTable& bonds, std::size_t a, std::size_t b) {
   if (c.group[a] != kNoContactGroup && c.group[a] == c.group[b]) return false;
   const std::size_t i = c.candidates[a];
   const auto row = bonds.neighbor.begin();
-  return !std::binary_search(row + bonds.begin(i), row + bonds.end(i), c.candidates[b]);
+  return std::find(row + bonds.begin(i), row + bonds.end(i), c.candidates[b]) == row + bonds.end(i);
 }
 
 // The candidates' current positions and their pairs closer than `cutoff`
 // (candidate indices, compressed rows, both ends, ascending: candidates are
-// sorted by storage index, so this is ascending storage index too). A
+// in the run's storage order, so this is ascending storage index too). A
 // candidate whose position is not finite has no pairs: the run's finite
 // check reports it; the search must not fail first.
 struct NearCandidates {

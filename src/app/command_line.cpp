@@ -23,14 +23,15 @@ void add_stepping_options(CLI::App& command, SteppingOptions& o, const std::stri
       .add_option_function<std::string>(
           "--cut",
           [&o](const std::string& name) {
-            o.cut = name == "slabs"   ? CutChoice::slabs
-                    : name == "bands" ? CutChoice::bands
-                                      : CutChoice::automatic;
+            o.cut = name == "slabs"    ? CutChoice::slabs
+                    : name == "bands"  ? CutChoice::bands
+                    : name == "blocks" ? CutChoice::blocks
+                                       : CutChoice::automatic;
           },
-          "how several MPI ranks cut the case: auto (the cut whose halo is estimated smaller), "
-          "slabs (of storage) or bands (across the longest extent); the same bits either way "
-          "(default: auto; one rank ignores it)")
-      ->check(CLI::IsMember({"auto", "slabs", "bands"}));
+          "how several MPI ranks cut the case: auto (the cut whose halo is estimated smallest), "
+          "slabs (of storage), bands (across the longest extent) or blocks (recursive "
+          "bisection); the same bits either way (default: auto; one rank ignores it)")
+      ->check(CLI::IsMember({"auto", "slabs", "bands", "blocks"}));
   command.add_option("--set", o.overrides, set_help)
       ->allow_extra_args(false)
       ->type_name("KEY=VALUE");

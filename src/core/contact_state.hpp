@@ -93,12 +93,41 @@ struct ContactState {
     const double half = 0.4999 * parameters.skin;
     return d2 > half * half;
   }
-  // The candidates whose storage index lies in [block.begin, block.end).
+  // The candidates whose storage index lies in [block.begin, block.end)
+  // (their storage indices ascending).
   Range candidates_in(Range block) const {
     const auto first = std::lower_bound(candidates.begin(), candidates.end(), block.begin);
     const auto last = std::lower_bound(first, candidates.end(), block.end);
     return {static_cast<std::size_t>(first - candidates.begin()),
             static_cast<std::size_t>(last - candidates.begin())};
+  }
+
+  // On a rank's part cut in pieces, which stores the ghosts beside its own
+  // particles after them, the candidates (in the run's storage order) do
+  // not ascend in storage index here: then `by_storage` lists them in
+  // ascending storage index (empty where they ascend).
+  std::vector<std::uint32_t> by_storage;
+  void order_by_storage() {
+    by_storage.clear();
+    if (std::is_sorted(candidates.begin(), candidates.end())) return;
+    by_storage.resize(size());
+    for (std::size_t a = 0; a < size(); ++a) by_storage[a] = static_cast<std::uint32_t>(a);
+    std::sort(by_storage.begin(), by_storage.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return candidates[a] < candidates[b]; });
+  }
+  // Calls f(a) for each candidate a whose storage index lies in block.
+  template <class F>
+  void for_candidates_in(Range block, F&& f) const {
+    if (by_storage.empty()) {
+      const Range r = candidates_in(block);
+      for (std::size_t a = r.begin; a < r.end; ++a) f(a);
+      return;
+    }
+    const auto at = [&](std::size_t i) {
+      return std::lower_bound(by_storage.begin(), by_storage.end(), i,
+                              [&](std::uint32_t a, std::size_t v) { return candidates[a] < v; });
+    };
+    for (auto k = at(block.begin), end = at(block.end); k != end; ++k) f(*k);
   }
 };
 

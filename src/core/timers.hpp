@@ -76,12 +76,12 @@ struct RankTimes {
   double slice_moves = 0, slice_bytes = 0;
 };
 
-// How a run over ranks is cut (src/solver/part_cut.hpp): "slabs" or
-// "bands along x" (y, z), with the ghosts each cut was estimated to imply,
-// and the rigid bodies it splits between ranks.
+// How a run over ranks is cut (src/solver/part_cut.hpp): "slabs", "bands
+// along x" (y, z) or "blocks", with the ghosts each cut was estimated to
+// imply, and the rigid bodies it splits between ranks.
 struct CutFacts {
   std::string kind;
-  double slab_ghosts = 0, band_ghosts = 0;
+  double slab_ghosts = 0, band_ghosts = 0, block_ghosts = 0;
   std::vector<std::string> split_rigid_bodies;
 };
 

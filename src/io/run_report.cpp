@@ -81,7 +81,9 @@ Json thread_facts_json(const RunFacts& facts) {
     if (!facts.cut.kind.empty())
       facts_json["cut"] = {{"kind", facts.cut.kind},
                            {"estimated_ghosts",
-                            {{"slabs", facts.cut.slab_ghosts}, {"bands", facts.cut.band_ghosts}}},
+                            {{"slabs", facts.cut.slab_ghosts},
+                             {"bands", facts.cut.band_ghosts},
+                             {"blocks", facts.cut.block_ghosts}}},
                            {"split_rigid_bodies", facts.cut.split_rigid_bodies}};
   }
   // With several threads on one process, stepping as ranks: what crossed

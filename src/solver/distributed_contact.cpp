@@ -1,6 +1,7 @@
 #include "src/solver/distributed_contact.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "kernels/contact_force.hpp"
@@ -9,9 +10,8 @@
 namespace mpsolid {
 
 namespace {
-// Every moving candidate's position from its owner: the owned moving
-// candidates of the ranks, gathered in rank order, are all of them in
-// candidate order (ranks own ascending storage ranges).
+// Every moving candidate's position from its owner: the ranks' own moving
+// candidates, gathered in rank order, put in candidate order.
 void gather_candidate_positions(const RankContact& rc, ContactState& c, ParticleStore& p,
                                 const RankGroup& world, HaloCost& cost) {
   CommunicationTime t(cost);
@@ -20,13 +20,15 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
   if (p.dimension == 3) axes.push_back(&p.z);
   const std::size_t n = axes.size();
   std::vector<double> mine;
-  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a)
-    for (const std::vector<double>* axis : axes) mine.push_back((*axis)[c.candidates[a]]);
+  for (const Range run : rc.owned)
+    for (std::size_t a = run.begin; a < run.end; ++a)
+      for (const std::vector<double>* axis : axes) mine.push_back((*axis)[c.candidates[a]]);
   cost.bytes_sent += 8.0 * static_cast<double>(mine.size());
-  const std::vector<double> all = world.all_gather(mine);
-  cost.tally("contact positions").received(8 * (all.size() - mine.size()));
-  if (all.size() != n * (c.size() - c.first_moving))
+  const std::vector<double> gathered = world.all_gather(mine);
+  cost.tally("contact positions").received(8 * (gathered.size() - mine.size()));
+  if (gathered.size() != n * (c.size() - c.first_moving))
     throw std::logic_error("contact: the ranks' candidates do not cover the moving ones");
+  const std::vector<double> all = in_candidate_order(rc, gathered, n);
   for (std::size_t a = c.first_moving; a < c.size(); ++a)
     for (std::size_t k = 0; k < n; ++k)
       (*axes[k])[c.candidates[a]] = all[n * (a - c.first_moving) + k];
@@ -38,14 +40,15 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
 LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const ParticleStore& p,
                             const LocalLayout& layout, const RankGroup& world, HaloCost& cost) {
   std::vector<std::uint32_t> need;  // global storage indices
-  for (std::size_t a = rc.owned.begin; a < rc.owned.end; ++a)
-    for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
-      const std::uint32_t j = c.partner[k];
-      if ((j >= layout.owned.begin && j < layout.owned.end) || p.kind[j] == Kind::wall ||
-          std::binary_search(rc.bond_ghosts.begin(), rc.bond_ghosts.end(), j))
-        continue;
-      need.push_back(layout.global_of[j]);
-    }
+  for (const Range run : rc.owned)
+    for (std::size_t a = run.begin; a < run.end; ++a)
+      for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
+        const std::uint32_t j = c.partner[k];
+        if ((j >= layout.owned.begin && j < layout.owned.end) || p.kind[j] == Kind::wall ||
+            std::binary_search(rc.bond_ghosts.begin(), rc.bond_ghosts.end(), j))
+          continue;
+        need.push_back(layout.global_of[j]);
+      }
   std::sort(need.begin(), need.end());
   need.erase(std::unique(need.begin(), need.end()), need.end());
   // Every rank's request, [count, indices...], in rank order.
@@ -86,19 +89,45 @@ LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const 
 }
 }  // namespace
 
+std::vector<double> in_candidate_order(const RankContact& rc, const std::vector<double>& by_rank,
+                                       std::size_t width) {
+  std::size_t first = std::numeric_limits<std::size_t>::max(), count = 0;
+  for (const auto& runs : rc.moving_by_rank)
+    for (const Range run : runs) {
+      first = std::min(first, run.begin);
+      count += run.size();
+    }
+  if (by_rank.size() != width * count)
+    throw std::logic_error("contact: values not one per moving candidate");
+  std::vector<double> out(by_rank.size());
+  auto from = by_rank.begin();
+  for (const auto& runs : rc.moving_by_rank)
+    for (const Range run : runs) {
+      std::copy_n(from, width * run.size(),
+                  out.begin() + static_cast<long>(width * (run.begin - first)));
+      from += static_cast<long>(width * run.size());
+    }
+  return out;
+}
+
 RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
                               const Decomposition& d, const LocalHalo& bond_halo) {
   RankContact rc;
-  // The ranks' candidates in rank order are in candidate order only when
-  // each rank owns one storage range.
-  if (s.contact.enabled() && !d.slabs())
-    throw std::invalid_argument("contact over ranks needs a cut in slabs");
   rc.decomposition = d;
-  const ParticleStore& p = s.particles;
-  const Range moving_owned{std::max(layout.owned.begin, p.moving().begin),
-                           std::min(layout.owned.end, p.moving().end)};
-  if (s.contact.enabled() && moving_owned.begin < moving_owned.end)
-    rc.owned = s.contact.candidates_in(moving_owned);
+  const ContactState& c = s.contact;
+  // Each moving candidate's owner, from its storage index: runs per rank.
+  rc.moving_by_rank.resize(static_cast<std::size_t>(d.ranks()));
+  for (std::size_t a = c.first_moving; a < c.size(); ++a) {
+    std::vector<Range>& runs =
+        rc.moving_by_rank[static_cast<std::size_t>(d.owner_of(layout.global_of[c.candidates[a]]))];
+    if (!runs.empty() && runs.back().end == a)
+      ++runs.back().end;
+    else
+      runs.push_back({a, a + 1});
+  }
+  if (!layout.owned.empty())
+    rc.owned = rc.moving_by_rank[static_cast<std::size_t>(
+        d.owner_of(layout.global_of[layout.owned.begin]))];
   for (const auto& list : bond_halo.receive)
     rc.bond_ghosts.insert(rc.bond_ghosts.end(), list.begin(), list.end());
   std::sort(rc.bond_ghosts.begin(), rc.bond_ghosts.end());
@@ -121,7 +150,7 @@ void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layou
     exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y), field_of(p.z)}, cost);
   else
     exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y)}, cost);
-  compute_contact_forces(c, p, rc.owned, step);
+  for (const Range run : rc.owned) compute_contact_forces(c, p, run, step);
   std::int64_t stale = 0;
   {
     CommunicationTime t(cost);
@@ -131,7 +160,7 @@ void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layou
   for (int r = 1; r < world.size(); ++r) staleness.received(8);
   if (stale == 0) return;
   rebuild_rank_contact(rc, s, layout, world, cost);
-  compute_contact_forces(c, p, rc.owned, step);
+  for (const Range run : rc.owned) compute_contact_forces(c, p, run, step);
 }
 
 }  // namespace mpsolid

@@ -24,11 +24,21 @@
 namespace mpsolid {
 
 struct RankContact {
-  Decomposition decomposition;             // who owns a partner
-  Range owned;                             // this rank's moving candidates (candidate indices)
+  Decomposition decomposition;  // who owns a partner
+  // Every rank's moving candidates, as runs of candidate indices in
+  // candidate order (one run per owned piece at most; with slabs, each
+  // rank one run and the ranks' in rank order), the same on every rank.
+  std::vector<std::vector<Range>> moving_by_rank;
+  std::vector<Range> owned;                // this rank's runs
   std::vector<std::uint32_t> bond_ghosts;  // local indices the bond halo refreshes, ascending
   LocalHalo halo;                          // the contact halo, planned at each rebuild
 };
+
+// Values `width` per moving candidate, every rank's own in rank order (a
+// gather's), put in candidate order: moving candidate a's at
+// width * (a - first moving).
+std::vector<double> in_candidate_order(const RankContact& rc, const std::vector<double>& by_rank,
+                                       std::size_t width);
 
 // The contact part of a rank's local state `s` (whose contact holds every
 // candidate of the run); `bond_halo` is the rank's halo for the bonds.

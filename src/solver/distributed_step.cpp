@@ -72,6 +72,7 @@ RankPart make_rank_part(const CaseSpec& spec, LocalPart local) {
   part.split_rigid =
       split_rigid_bodies(spec, part.body_ranges, part.decomposition, part.local.rigid_bodies);
   part.contact = make_rank_contact(part.local, part.layout, local.decomposition, part.halo);
+  part.local.contact.order_by_storage();
   part.model = make_model(spec.model, part.local.particles, part.local.bonds, spec.model_options,
                           part.layout.owned);
   part.bonded_to_owned_only = bonded_to_owned_only(part.local.bonds, part.layout.owned);

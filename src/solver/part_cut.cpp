@@ -65,30 +65,179 @@ Survey survey(const CaseSpec& spec, const BodyLayout& layout, const Decompositio
   }
   return s;
 }
+
+// A tree of cuts over the sites. Node k covers ranks [r0, r1) and a box;
+// an inner node cuts its sites across `axis` (its box's longest extent)
+// at bin edges (bins a quarter of l0 wide) into children, each child a
+// contiguous share of its ranks and, nearest that share, of its sites.
+// Bands: the root cut into one child per rank. Blocks (recursive
+// coordinate bisection): every node cut in two, its ranks halved.
+struct CutNode {
+  int r0 = 0, r1 = 0;
+  std::array<double, 3> lo{}, hi{};
+  int axis = 0;
+  double origin = 0;
+  std::size_t bins = 0;
+  std::vector<double> count;           // its sites per bin
+  std::vector<std::size_t> first_bin;  // each child's first bin, then `bins`
+  std::vector<std::size_t> children;
+};
+
+class CutTree {
+ public:
+  CutTree(const CaseSpec& spec, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+          int ranks)
+      : width_(0.25 * spec.l0),
+        reach_bins_(static_cast<std::size_t>(std::ceil(bond_reach(spec) / width_))),
+        dimension_(spec.dimension) {
+    CutNode root;
+    root.r1 = ranks;
+    root.lo = lo;
+    root.hi = hi;
+    nodes_.push_back(open(root));
+  }
+  // The root: binned across the case's longest extent.
+  const CutNode& root() const { return nodes_.front(); }
+  std::size_t bin_of(const CutNode& n, double c) const {
+    return std::min(n.bins - 1,
+                    static_cast<std::size_t>(std::max(0.0, std::floor((c - n.origin) / width_))));
+  }
+  // The node a site falls in: a leaf, or a node not cut yet.
+  std::size_t node_of(const Point3& at) const {
+    std::size_t k = 0;
+    while (!nodes_[k].children.empty()) {
+      const CutNode& n = nodes_[k];
+      const std::size_t bin = bin_of(n, coordinate(at, n.axis));
+      const auto child = static_cast<std::size_t>(
+          std::upper_bound(n.first_bin.begin() + 1, n.first_bin.end() - 1, bin) -
+          (n.first_bin.begin() + 1));
+      k = n.children[child];
+    }
+    return k;
+  }
+  // Counts a site in the bins of the node it falls in, if not cut yet.
+  void count(const Point3& at) {
+    CutNode& n = nodes_[node_of(at)];
+    if (!n.count.empty()) n.count[bin_of(n, coordinate(at, n.axis))] += 1;
+  }
+  // Cuts node k, its sites counted, into `parts` children (its ranks in
+  // equal shares, the first ones the smaller); returns the sites within a
+  // bond's reach of its cuts, the ghosts they are estimated to imply.
+  double cut(std::size_t k, int parts) {
+    CutNode n = std::move(nodes_[k]);
+    const int ranks = n.r1 - n.r0;
+    double total = 0;
+    for (const double c : n.count) total += c;
+    n.first_bin.assign(static_cast<std::size_t>(parts) + 1, n.bins);
+    n.first_bin[0] = 0;
+    std::vector<int> rank_start{n.r0};
+    double before = 0;  // sites in the bins before bin b
+    std::size_t b = 0;
+    for (int p = 1; p < parts; ++p) {
+      const int r = n.r0 + p * ranks / parts;
+      rank_start.push_back(r);
+      const double target = total * (r - n.r0) / ranks;
+      while (b < n.bins && before + n.count[b] <= target) before += n.count[b++];
+      if (b < n.bins && target - before > before + n.count[b] - target) before += n.count[b++];
+      n.first_bin[static_cast<std::size_t>(p)] =
+          std::max(n.first_bin[static_cast<std::size_t>(p) - 1], b);
+    }
+    rank_start.push_back(n.r1);
+    double ghosts = 0;
+    for (int p = 1; p < parts; ++p) {
+      const std::size_t edge = n.first_bin[static_cast<std::size_t>(p)];
+      if (edge == 0 || edge >= n.bins) continue;
+      for (std::size_t i = edge > reach_bins_ ? edge - reach_bins_ : 0;
+           i < std::min(n.bins, edge + reach_bins_); ++i)
+        ghosts += n.count[i];
+    }
+    for (int p = 0; p < parts; ++p) {
+      CutNode child;
+      child.r0 = rank_start[static_cast<std::size_t>(p)];
+      child.r1 = rank_start[static_cast<std::size_t>(p) + 1];
+      child.lo = n.lo;
+      child.hi = n.hi;
+      const auto a = static_cast<std::size_t>(n.axis);
+      child.lo[a] = std::max(
+          n.lo[a],
+          n.origin + width_ * static_cast<double>(n.first_bin[static_cast<std::size_t>(p)]));
+      child.hi[a] = std::min(
+          n.hi[a],
+          n.origin + width_ * static_cast<double>(n.first_bin[static_cast<std::size_t>(p) + 1]));
+      n.children.push_back(nodes_.size());
+      nodes_.push_back(child.r1 - child.r0 > 1 ? open(child) : child);
+    }
+    n.count.clear();
+    nodes_[k] = std::move(n);
+    return ghosts;
+  }
+  // The nodes binned and not cut yet.
+  std::vector<std::size_t> open_nodes() const {
+    std::vector<std::size_t> out;
+    for (std::size_t k = 0; k < nodes_.size(); ++k)
+      if (nodes_[k].children.empty() && !nodes_[k].count.empty()) out.push_back(k);
+    return out;
+  }
+  // A site's rank.
+  int rank_of(const Point3& at) const { return nodes_[node_of(at)].r0; }
+
+ private:
+  // The node binned along its box's longest extent.
+  CutNode open(CutNode n) const {
+    n.axis = 0;
+    for (int a = 1; a < dimension_; ++a)
+      if (n.hi[static_cast<std::size_t>(a)] - n.lo[static_cast<std::size_t>(a)] >
+          n.hi[static_cast<std::size_t>(n.axis)] - n.lo[static_cast<std::size_t>(n.axis)])
+        n.axis = a;
+    const auto a = static_cast<std::size_t>(n.axis);
+    n.origin = n.lo[a];
+    n.bins = static_cast<std::size_t>(std::max(0.0, std::floor((n.hi[a] - n.lo[a]) / width_))) + 1;
+    n.count.assign(n.bins, 0.0);
+    return n;
+  }
+  double width_;
+  std::size_t reach_bins_;
+  int dimension_;
+  std::vector<CutNode> nodes_;
+};
+
+// The pieces of a tree's cut: the runs of one rank in storage order, a body
+// kept whole in its first site's rank.
+Decomposition pieces_of(const CaseSpec& spec, const BodyLayout& layout, const CutTree& tree,
+                        int ranks) {
+  const std::vector<bool> whole = bodies_kept_whole(spec, ranks);
+  std::vector<std::size_t> starts;
+  std::vector<int> owners;
+  for (const std::size_t b : layout.order) {
+    int body_rank = -1;
+    visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
+      const int rank = body_rank >= 0 ? body_rank : tree.rank_of(at);
+      if (whole[b] && k == 0) body_rank = rank;
+      if (owners.empty() || owners.back() != rank) {
+        starts.push_back(layout.range[b].begin + k);
+        owners.push_back(rank);
+      }
+    });
+  }
+  starts.push_back(layout.total);
+  return decomposition_in_pieces(std::move(starts), std::move(owners), ranks);
+}
 }  // namespace
 
 CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
   CaseCut out;
   out.decomposition = decompose_case(spec, ranks);
   out.kind = "slabs";
-  if (ranks < 2 || spec.contact.enabled) return out;
+  if (ranks < 2) return out;
   const BodyLayout layout = body_layout(spec);
   if (layout.total == 0) return out;
   const double reach = bond_reach(spec);
   const Survey s = survey(spec, layout, out.decomposition);
-  // Bands along the longest extent, over bins a quarter of l0 wide.
-  int axis = 0;
-  for (int a = 1; a < spec.dimension; ++a)
-    if (s.hi[a] - s.lo[a] > s.hi[axis] - s.lo[axis]) axis = a;
-  const double width = 0.25 * spec.l0, lo = s.lo[axis];
-  const auto bins = static_cast<std::size_t>(std::floor((s.hi[axis] - lo) / width)) + 1;
-  const auto bin_of = [&](double c) {
-    return std::min(bins - 1,
-                    static_cast<std::size_t>(std::max(0.0, std::floor((c - lo) / width))));
-  };
-  std::vector<double> count(bins, 0.0);
-  // The slabs' halo: each cut inside a body, a plane across the axis its
-  // fill advances along, holds the body's sites within reach of it.
+  // One pass: the slabs' halo (each cut inside a body, a plane across the
+  // axis its body's fill advances along, holds the body's sites within
+  // reach of it) and the sites binned across the case's longest extent,
+  // which both trees cut first.
+  CutTree bands(spec, s.lo, s.hi, ranks);
   double slab_ghosts = 0;
   for (const std::size_t b : layout.order) {
     std::vector<double> planes;
@@ -97,64 +246,39 @@ CaseCut cut_case(const CaseSpec& spec, int ranks, CutChoice choice) {
       if (s.cut_body[c] == b && slow >= 0)
         planes.push_back(s.cut_at[c][static_cast<std::size_t>(slow)]);
     visit_body_sites(spec, b, [&](std::size_t, const Point3& at) {
-      count[bin_of(coordinate(at, axis))] += 1;
+      bands.count(at);
       for (const double plane : planes)
         if (std::abs(coordinate(at, slow) - plane) <= reach) slab_ghosts += 1;
     });
   }
-  // The bands: their first bins, nearest an equal share of the sites each.
-  std::vector<std::size_t> first_bin(static_cast<std::size_t>(ranks) + 1, bins);
-  first_bin[0] = 0;
-  {
-    double before = 0;  // sites in the bins before bin k
-    std::size_t k = 0;
-    for (int r = 1; r < ranks; ++r) {
-      const double target = static_cast<double>(layout.total) * r / ranks;
-      while (k < bins && before + count[k] <= target) before += count[k++];
-      if (k < bins && target - before > before + count[k] - target) before += count[k++];
-      first_bin[static_cast<std::size_t>(r)] =
-          std::max(first_bin[static_cast<std::size_t>(r) - 1], k);
-    }
+  CutTree blocks = bands;
+  const int axis = bands.root().axis;
+  // Bands: the root cut once per rank. Blocks: halved, then each part's
+  // sites counted and halved again (a pass per level).
+  const double band_ghosts = bands.cut(0, ranks);
+  double block_ghosts = blocks.cut(0, 2);
+  for (std::vector<std::size_t> open = blocks.open_nodes(); !open.empty();
+       open = blocks.open_nodes()) {
+    for (const std::size_t b : layout.order)
+      visit_body_sites(spec, b, [&](std::size_t, const Point3& at) { blocks.count(at); });
+    for (const std::size_t k : open) block_ghosts += blocks.cut(k, 2);
   }
-  double band_ghosts = 0;
-  const auto reach_bins = static_cast<std::size_t>(std::ceil(reach / width));
-  for (int r = 1; r < ranks; ++r) {
-    const std::size_t edge = first_bin[static_cast<std::size_t>(r)];
-    if (edge == 0 || edge >= bins) continue;
-    for (std::size_t k = edge > reach_bins ? edge - reach_bins : 0;
-         k < std::min(bins, edge + reach_bins); ++k)
-      band_ghosts += count[k];
-  }
+  // Every estimate is reported, whichever cut is taken.
   out.slab_ghosts = slab_ghosts;
   out.band_ghosts = band_ghosts;
-  // Both estimates are reported, whichever cut is taken.
-  const bool bands = choice == CutChoice::bands ||
-                     (choice == CutChoice::automatic && band_ghosts < 0.8 * slab_ghosts);
-  if (!bands) return out;
-  // Each site's band, a body kept whole in its first site's; the pieces
-  // are the runs of one band in storage order.
-  const std::vector<bool> whole = bodies_kept_whole(spec, ranks);
-  const auto band_of = [&](double c) {
-    const std::size_t bin = bin_of(c);
-    return static_cast<int>(std::upper_bound(first_bin.begin() + 1, first_bin.end() - 1, bin) -
-                            (first_bin.begin() + 1));
-  };
-  std::vector<std::size_t> starts;
-  std::vector<int> owners;
-  for (const std::size_t b : layout.order) {
-    int body_band = -1;
-    visit_body_sites(spec, b, [&](std::size_t k, const Point3& at) {
-      int band = body_band >= 0 ? body_band : band_of(coordinate(at, axis));
-      if (whole[b] && k == 0) body_band = band;
-      if (owners.empty() || owners.back() != band) {
-        starts.push_back(layout.range[b].begin + k);
-        owners.push_back(band);
-      }
-    });
+  out.block_ghosts = block_ghosts;
+  CutChoice taken = choice;
+  if (choice == CutChoice::automatic) {
+    // A cut finer than slabs only where it saves a fifth of the halo.
+    taken = CutChoice::slabs;
+    double best = slab_ghosts;
+    if (band_ghosts < 0.8 * best) taken = CutChoice::bands, best = band_ghosts;
+    if (block_ghosts < 0.8 * best) taken = CutChoice::blocks;
   }
-  starts.push_back(layout.total);
-  out.decomposition = decomposition_in_pieces(std::move(starts), std::move(owners), ranks);
-  out.kind = std::string("bands along ") + kAxisNames[axis];
+  if (taken == CutChoice::slabs) return out;
+  const bool in_bands = taken == CutChoice::bands;
+  out.decomposition = pieces_of(spec, layout, in_bands ? bands : blocks, ranks);
+  out.kind = in_bands ? std::string("bands along ") + kAxisNames[axis] : std::string("blocks");
   return out;
 }
 

@@ -246,21 +246,25 @@ Window make_window(const CaseSpec& spec, const BodyLayout& layout, const BondGeo
 
 // Every contact candidate of the run (global storage indices, ascending)
 // and its group: each rank finds those among its own sites, whose bond rows
-// the window holds whole, and the ranks share them in rank order.
+// the window holds whole, piece by piece, and the ranks share them (in rank
+// order, then put in storage order: a cut in pieces interleaves the ranks').
 CandidateList every_candidate(const CaseSpec& spec, const Window& w, const std::vector<Range>& mine,
                               const RankGroup& world) {
-  if (mine.size() > 1) throw std::logic_error("contact over ranks: a cut in slabs only");
   CandidateList own;
-  if (!mine.empty()) find_contact_candidates(spec, w.state, w.range(mine.front()), own);
+  for (const Range piece : mine) find_contact_candidates(spec, w.state, w.range(piece), own);
   std::vector<double> pairs;
   for (std::size_t k = 0; k < own.index.size(); ++k)
     pairs.insert(pairs.end(), {static_cast<double>(w.global_of[own.index[k]]),
                                static_cast<double>(own.group[k])});
   const std::vector<double> all = world.all_gather(pairs);
+  std::vector<std::pair<std::uint32_t, std::int32_t>> found;
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2)
+    found.emplace_back(static_cast<std::uint32_t>(all[k]), static_cast<std::int32_t>(all[k + 1]));
+  std::sort(found.begin(), found.end());
   CandidateList every;
-  for (std::size_t k = 0; k + 1 < all.size(); k += 2) {
-    every.index.push_back(static_cast<std::uint32_t>(all[k]));
-    every.group.push_back(static_cast<std::int32_t>(all[k + 1]));
+  for (const auto& [index, group] : found) {
+    every.index.push_back(index);
+    every.group.push_back(group);
   }
   return every;
 }

@@ -89,10 +89,11 @@ void append_rank_check(const RankPart& part, const RankGroup& world, std::vector
   // the first step its contact pass found a pair too close.
   const ContactState& c = part.local.contact;
   std::vector<double> candidates;
-  for (std::size_t a = part.contact.owned.begin; a < part.contact.owned.end; ++a) {
-    const std::array<double, 3> at = position_of(p, c.candidates[a]);
-    candidates.insert(candidates.end(), at.begin(), at.begin() + (p.dimension == 3 ? 3 : 2));
-  }
+  for (const Range run : part.contact.owned)
+    for (std::size_t a = run.begin; a < run.end; ++a) {
+      const std::array<double, 3> at = position_of(p, c.candidates[a]);
+      candidates.insert(candidates.end(), at.begin(), at.begin() + (p.dimension == 3 ? 3 : 2));
+    }
   append_list(candidates, out);
   out.push_back(static_cast<double>(c.too_close.step.load()));
 }
@@ -132,8 +133,7 @@ void RankChecks::read(const std::vector<double>& in, std::size_t& at, SolverStat
         probes[k + 1], probes[k + 2], probes[k + 3]};
   const std::vector<double> nodes = read_list(in, at);
   pressure_nodes_.insert(pressure_nodes_.end(), nodes.begin(), nodes.end());
-  // Ranks own ascending ranges: their candidates in rank order are in
-  // candidate order.
+  // In rank order (in_candidate_order puts them in candidate order).
   const std::vector<double> candidates = read_list(in, at);
   figures_.candidate_positions.insert(figures_.candidate_positions.end(), candidates.begin(),
                                       candidates.end());

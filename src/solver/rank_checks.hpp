@@ -25,9 +25,10 @@ struct CheckFigures {
   Fastest fastest;          // the first fastest moving particle
   IntegrityReport integrity;
   HistoryReadings readings;  // what a history row reads of the particles
-  // With contact: the moving candidates' positions (x, y[, z] each, in
-  // candidate order) and the first step any rank found a pair too close
-  // (-1: none).
+  // With contact: the moving candidates' positions (x, y[, z] each, each
+  // rank's own in candidate order, the ranks in rank order:
+  // in_candidate_order puts them in candidate order) and the first step
+  // any rank found a pair too close (-1: none).
   std::vector<double> candidate_positions;
   std::int64_t too_close = -1;
 };

@@ -288,7 +288,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, const SolverState& global, Fo
   // names it), then each follower's part.
   followers.send_case(spec.resolved_toml);
   const Decomposition decomposition = decompose_state(global, world.size());
-  cut_ = {"slabs", 0.0, 0.0, {}};
+  cut_ = {"slabs", 0.0, 0.0, 0.0, {}};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   // Without contact (whose candidates the ranks share as they set up,
   // which rank 0's part cut from its copy would not join), each follower
@@ -325,7 +325,7 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
   followers.send_case(spec.resolved_toml);
   const CaseCut chosen = cut_case(spec, world.size(), followers.cut());
   const Decomposition& cut = chosen.decomposition;
-  cut_ = {chosen.kind, chosen.slab_ghosts, chosen.band_ghosts, {}};
+  cut_ = {chosen.kind, chosen.slab_ghosts, chosen.band_ghosts, chosen.block_ghosts, {}};
   slice_moves_.resize(static_cast<std::size_t>(world.size()));
   for (int r = 1; r < world.size(); ++r) world.send(r, cut_message(cut));
   try {
@@ -434,7 +434,10 @@ CheckFigures RankedStepper::check_figures(SolverState& global, PhaseTimers& time
   fields_ = exchange(global, 0, {.send_slices = ranks_behind_, .fields = true, .check = true});
   ranks_behind_ = false;
   if (contact_copy_) {
-    place_moving_candidates(*contact_copy_, global.contact, check_.candidate_positions);
+    // The ranks' own candidates came in rank order.
+    place_moving_candidates(*contact_copy_, global.contact,
+                            in_candidate_order(parts_->part.contact, check_.candidate_positions,
+                                               global.particles.dimension == 3 ? 3 : 2));
     const std::int64_t first = global.contact.too_close.step.load();
     if (check_.too_close >= 0 && (first < 0 || check_.too_close < first))
       global.contact.too_close.step.store(check_.too_close);

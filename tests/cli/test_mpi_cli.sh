@@ -5,8 +5,9 @@
 #    (compare_runs.py);
 #  - a checkpoint written at 2 ranks resumes at 1 and at 3 ranks to the
 #    same bits, every rank reading its own rows (a damaged row is refused);
-#  - contact (the colliding blocks) at 2 and 3 ranks, and a 2-rank
-#    checkpoint written mid-collision resumed at 1 and 3 ranks, give the
+#  - contact (the colliding blocks) at 2 and 3 ranks (and on bands at 3),
+#    and a 2-rank checkpoint written mid-collision resumed at 1 and 3 ranks
+#    (and at 3 on bands), give the
 #    serial bits, and the ranks' estimate of the stable step is the serial
 #    one (and warns of a given dt above it the same way);
 #  - a too soft contact stops a 2-rank run as it stops one rank (exit 3),
@@ -20,6 +21,7 @@
 #  - the gas coupled to a panel at 2 and 3 ranks, and resumed at 3 ranks
 #    during the shock's reflection, gives the serial bits, and so does the
 #    rod in the gas at 3 ranks, rank 0 holding no copy, no slice moving;
+#  - a square plate at 4 ranks, cut in blocks, gives the serial bits;
 #  - a rigid rail along a strip, split between ranks by the cut (bands or
 #    slabs), gives the serial bits at 2 and 3 ranks and resumed across rank
 #    counts, run.json naming it split;
@@ -160,9 +162,22 @@ print(runs[0]["cut"]["kind"], "|", runs[1]["cut"]["kind"], "|", ghosts[1] < ghos
   ok "--cut: run.json names each cut, and the bands hold fewer ghosts" ||
   fail "--cut: run.json's cuts and fewer ghosts for bands: $cuts"
 mpi 2 cut_bad run "$CASE" "${SETS[@]}" --cut diagonal --out "$TMP/cut_bad"
-[[ $rc -eq 2 && ! -e "$TMP/cut_bad" ]] && grep -q "diagonal not in {auto,slabs,bands}" \
+[[ $rc -eq 2 && ! -e "$TMP/cut_bad" ]] && grep -q "diagonal not in {auto,slabs,bands,blocks}" \
   "$TMP/cut_bad.err" && ok "--cut diagonal: exit 2, the allowed values named, nothing written" ||
   fail "--cut diagonal: exit $rc"
+
+# A square plate spinning at 4 ranks: the cut chosen is blocks (quarters),
+# with the serial bits.
+PLATE_SETS=(--set time.end=2e-3 --set output.frame_interval=1e-3 --set output.checkpoint_interval=1e-3
+  --set output.history_interval=2e-4)
+"$BIN" run cases/spinning_plate.toml "${PLATE_SETS[@]}" --out "$TMP/plate_serial" --threads 1 \
+  >/dev/null 2>&1 </dev/null || fail "the serial spinning plate failed"
+mpi 4 plate4 run cases/spinning_plate.toml "${PLATE_SETS[@]}" --out "$TMP/plate4"
+[[ $rc -eq 0 ]] && same "the spinning plate at 4 ranks" "$TMP/plate4" "$TMP/plate_serial" ||
+  fail "the spinning plate at 4 ranks: exit $rc"
+/usr/bin/python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1]))["cut"]["kind"] != "blocks")' \
+  "$TMP/plate4/run.json" && ok "the spinning plate at 4 ranks: cut in blocks" ||
+  fail "the spinning plate at 4 ranks: not cut in blocks"
 
 # A rigid rail along a strip, a quarter of the particles (more than a tenth
 # of a rank's share): the cut splits it between ranks (bands at 2 and 3,
@@ -396,6 +411,7 @@ else
 fi
 mpi 2 c_half run "$C_CASE" "${C_SETS[@]}" --set time.end=1.2e-3 --out "$TMP/c_half"
 cp -r "$TMP/c_half" "$TMP/c_half3"
+cp -r "$TMP/c_half" "$TMP/c_half_bands"
 "$BIN" resume "$TMP/c_half" --set time.end=2.4e-3 --threads 1 >/dev/null 2>&1 </dev/null &&
   same "contact, 2 ranks resumed at 1" "$TMP/c_half" "$TMP/c_serial" ||
   fail "contact: resume at 1 rank failed"
@@ -403,6 +419,18 @@ mpi 3 c_resume3 resume "$TMP/c_half3" --set time.end=2.4e-3
 [[ $rc -eq 0 ]] && same "contact, 2 ranks resumed at 3" "$TMP/c_half3" "$TMP/c_serial" ||
   fail "contact: resume at 3 ranks: exit $rc"
 copy_is "contact, 2 ranks resumed at 3" "$TMP/c_half3" none
+# Contact on bands at 3 ranks (each rank's candidates are runs of the
+# candidate order, the ranks' interleaved), and the 2-rank checkpoint
+# resumed at 3 on bands: the serial bits, rank 0's contact figures too.
+mpi 3 c_bands run "$C_CASE" "${C_SETS[@]}" --set time.end=2.4e-3 --cut bands --out "$TMP/c_bands"
+[[ $rc -eq 0 ]] && same "contact on bands at 3 ranks" "$TMP/c_bands" "$TMP/c_serial" ||
+  fail "contact on bands at 3 ranks: exit $rc"
+/usr/bin/python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1]))["cut"]["kind"] != "bands along x")' \
+  "$TMP/c_bands/run.json" &&
+  ok "contact on bands: run.json names the bands" || fail "contact on bands: not cut in bands"
+mpi 3 c_resume_bands resume "$TMP/c_half_bands" --set time.end=2.4e-3 --cut bands
+[[ $rc -eq 0 ]] && same "contact, 2 ranks resumed at 3 on bands" "$TMP/c_half_bands" "$TMP/c_serial" ||
+  fail "contact: resume at 3 ranks on bands: exit $rc"
 touched=$(/usr/bin/python3 -c '
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
