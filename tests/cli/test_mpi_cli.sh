@@ -184,33 +184,7 @@ mpi 4 plate4 run cases/spinning_plate.toml "${PLATE_SETS[@]}" --out "$TMP/plate4
 # slabs at 4 when asked), each rank holding some of it projects it with the
 # others; the serial bits, run.json naming it split, and a checkpoint
 # written at 3 ranks resumes at 2 to the same bits.
-RAIL=$TMP/rail.toml
-cat >"$RAIL" <<'TOML'
-l0 = 1e-3
-[materials.rubber]
-E = 2.8e6
-nu = 0.45
-rho = 1010.0
-[bodies.strip]
-kind = "elastic"
-material = "rubber"
-x = [0.0, 0.12]
-y = [0.0, 0.008]
-[bodies.rail]
-kind = "rigid"
-material = "rubber"
-x = [0.0, 0.12]
-y = [-0.003, 0.0]
-velocity = [0.2, 0.5]
-spin = 8.0
-[time]
-dt = "auto"
-end = 0.004
-[output]
-frame_interval = 0.001
-checkpoint_interval = 0.001
-history_interval = 1e-4
-TOML
+RAIL=tests/support/strip_on_a_rail.toml
 at_2_and_3 "a rail split between ranks" rail "$TMP/rail_serial" "$RAIL"
 mpi 4 rail_slabs run "$RAIL" --cut slabs --out "$TMP/rail_slabs"
 [[ $rc -eq 0 ]] && same "the rail on slabs at 4 ranks" "$TMP/rail_slabs" "$TMP/rail_serial" ||

@@ -20,6 +20,7 @@
 #include "src/solver/setup.hpp"
 #include "src/solver/simulation.hpp"
 #include "src/solver/time_step_choice.hpp"
+#include "tests/support/serial_bits.hpp"
 #include "tests/support/test_cases.hpp"
 #include "tests/support/thread_team.hpp"
 
@@ -135,29 +136,11 @@ TEST(PartCut, ASquarePlateAtFourRanksIsCutInBlocks) {
 // bit.
 void expect_serial_bits_on(const CaseSpec& spec, int ranks, std::int64_t steps,
                            const std::function<Decomposition(const SolverState&)>& cut_of) {
-  Simulation serial(spec);
-  const CaseSpec& run = serial.spec();  // its step fixed
-  const SolverState start = serial.state();
-  const Decomposition cut = cut_of(start);
-  ASSERT_FALSE(cut.slabs());
-  ASSERT_EQ(cut.ranks(), ranks);
-  serial.advance(steps);
-  const ParticleStore& want = serial.particles();
-  std::vector<std::string> failures(static_cast<std::size_t>(ranks));
-  testing::as_ranks(ranks, [&](const RankGroup& world, int me) {
-    RankPart part = make_rank_part(run, local_part(start, cut, me));
-    advance_rank_part(part, world, run.dt, steps);
-    const ParticleStore& got = part.local.particles;
-    for (std::size_t k = part.layout.owned.begin; k < part.layout.owned.end; ++k) {
-      const std::size_t g = part.layout.global_of[k];
-      std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>> arrays{
-          {&got.x, &want.x}, {&got.y, &want.y}, {&got.vx, &want.vx}, {&got.vy, &want.vy}};
-      if (got.dimension == 3) arrays.insert(arrays.end(), {{&got.z, &want.z}, {&got.vz, &want.vz}});
-      for (const auto& [a, b] : arrays)
-        if (!same_bits((*a)[k], (*b)[g]) && failures[static_cast<std::size_t>(me)].empty())
-          failures[static_cast<std::size_t>(me)] =
-              "rank " + std::to_string(me) + ": particle " + std::to_string(g) + " differs";
-    }
+  const auto failures = testing::serial_bits_failures(spec, steps, [&](const SolverState& s) {
+    const Decomposition cut = cut_of(s);
+    EXPECT_FALSE(cut.slabs());
+    EXPECT_EQ(cut.ranks(), ranks);
+    return cut;
   });
   for (const std::string& f : failures) EXPECT_TRUE(f.empty()) << f;
 }

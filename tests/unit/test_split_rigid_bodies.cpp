@@ -16,6 +16,7 @@
 #include "src/solver/part_cut.hpp"
 #include "src/solver/part_setup.hpp"
 #include "src/solver/simulation.hpp"
+#include "tests/support/serial_bits.hpp"
 #include "tests/support/test_cases.hpp"
 #include "tests/support/thread_team.hpp"
 
@@ -26,32 +27,8 @@ bool same_bits(double a, double b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-// A strip bonded along its length to a rigid rail, which is set moving and
-// spinning (free: the strip's bonds turn it back).
 CaseSpec strip_on_a_rail(const std::vector<std::string>& overrides = {}) {
-  return load_case_text(R"(
-l0 = 1e-3
-[materials.rubber]
-E = 2.8e6
-nu = 0.45
-rho = 1010.0
-[bodies.strip]
-kind = "elastic"
-material = "rubber"
-x = [0.0, 0.12]
-y = [0.0, 0.008]
-[bodies.rail]
-kind = "rigid"
-material = "rubber"
-x = [0.0, 0.12]
-y = [-0.003, 0.0]
-velocity = [0.2, 0.5]
-spin = 8.0
-[time]
-dt = "auto"
-end = 0.01
-)",
-                        "strip_on_a_rail.toml", overrides);
+  return load_case(testing::source_path("tests/support/strip_on_a_rail.toml"), overrides);
 }
 
 // Slabs whose every cut falls inside the first rigid body, off its chunks.
@@ -77,44 +54,15 @@ Decomposition dealt(std::size_t particles, int ranks, std::size_t width) {
   return decomposition_in_pieces(starts, owners, ranks);
 }
 
-// After `steps` decomposed steps on `d`, every owned particle and every
-// rigid body each rank holds (pose and work) are the serial run's.
+// After `steps` decomposed steps on `d`, which splits a rigid body, every
+// owned particle and every rigid body each rank holds (pose and work) are
+// the serial run's.
 void expect_serial_bits(const CaseSpec& spec, const Decomposition& d, std::int64_t steps) {
-  Simulation serial(spec);
-  const CaseSpec& run = serial.spec();
-  const SolverState start = serial.state();
-  bool split = false;
-  for (const RigidBody& b : start.rigid_bodies) split |= d.owners_of(b.range).size() > 1;
-  ASSERT_TRUE(split) << "the cut splits no rigid body";
-  serial.advance(steps);
-  const SolverState& want = serial.state();
-  const int ranks = d.ranks();
-  std::vector<std::string> failures(static_cast<std::size_t>(ranks));
-  testing::as_ranks(ranks, [&](const RankGroup& world, int me) {
-    std::string& failure = failures[static_cast<std::size_t>(me)];
-    const auto fail = [&](const std::string& what) {
-      if (failure.empty()) failure = "rank " + std::to_string(me) + ": " + what;
-    };
-    RankPart part = make_rank_part(run, local_part(start, d, me));
-    advance_rank_part(part, world, run.dt, steps);
-    const ParticleStore& got = part.local.particles;
-    const ParticleStore& p = want.particles;
-    for (std::size_t k = part.layout.owned.begin; k < part.layout.owned.end; ++k) {
-      const std::size_t g = part.layout.global_of[k];
-      std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>> arrays{
-          {&got.x, &p.x}, {&got.y, &p.y}, {&got.vx, &p.vx}, {&got.vy, &p.vy}};
-      if (got.dimension == 3) arrays.insert(arrays.end(), {{&got.z, &p.z}, {&got.vz, &p.vz}});
-      for (const auto& [a, b] : arrays)
-        if (!same_bits((*a)[k], (*b)[g])) fail("particle " + std::to_string(g) + " differs");
-    }
-    for (const RigidBody& body : part.local.rigid_bodies)
-      for (const RigidBody& serial_body : want.rigid_bodies) {
-        if (serial_body.name != body.name) continue;
-        const std::vector<double> a = pose_values(body), b = pose_values(serial_body);
-        for (std::size_t v = 0; v < a.size(); ++v)
-          if (!same_bits(a[v], b[v])) fail(body.name + "'s pose value " + std::to_string(v));
-        if (!same_bits(body.work, serial_body.work)) fail(body.name + "'s work");
-      }
+  const auto failures = testing::serial_bits_failures(spec, steps, [&](const SolverState& s) {
+    bool split = false;
+    for (const RigidBody& b : s.rigid_bodies) split |= d.owners_of(b.range).size() > 1;
+    EXPECT_TRUE(split) << "the cut splits no rigid body";
+    return d;
   });
   for (const std::string& f : failures) EXPECT_TRUE(f.empty()) << f;
 }
