@@ -6,20 +6,21 @@
 
 namespace mpsolid {
 
-int Decomposition::owner_of(std::size_t i) const {
+std::size_t Decomposition::piece_of(std::size_t i) const {
   // The last piece that starts at or before i (empty pieces share a start).
   const auto after = std::upper_bound(starts.begin(), starts.end() - 1, i);
-  const auto piece = static_cast<std::size_t>(after - starts.begin()) - 1;
+  return static_cast<std::size_t>(after - starts.begin()) - 1;
+}
+
+int Decomposition::owner_of(std::size_t i) const {
+  const std::size_t piece = piece_of(i);
   return owners.empty() ? static_cast<int>(piece) : owners[piece];
 }
 
 std::vector<int> Decomposition::owners_of(Range r) const {
   std::vector<int> out;
   if (r.empty()) return out;
-  auto k = static_cast<std::size_t>(std::upper_bound(starts.begin(), starts.end() - 1, r.begin) -
-                                    starts.begin()) -
-           1;
-  for (; k + 1 < starts.size() && starts[k] < r.end; ++k)
+  for (std::size_t k = piece_of(r.begin); k + 1 < starts.size() && starts[k] < r.end; ++k)
     if (starts[k + 1] > starts[k]) out.push_back(owners.empty() ? static_cast<int>(k) : owners[k]);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

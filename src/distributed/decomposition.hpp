@@ -37,6 +37,8 @@ struct Decomposition {
   std::vector<Range> pieces(int rank) const;
   // Every rank's pieces (one pass over the cut).
   std::vector<std::vector<Range>> pieces_by_rank() const;
+  // The piece holding index i (the last of the empty pieces starting there).
+  std::size_t piece_of(std::size_t i) const;
   int owner_of(std::size_t i) const;
   // The ranks owning some of `r`, ascending.
   std::vector<int> owners_of(Range r) const;

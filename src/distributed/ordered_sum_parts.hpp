@@ -182,10 +182,7 @@ OrderedSumPart<N> finish_shared_chunks(const OrderedSumPart<N>& mine, std::size_
       current.clear();
     };
     // The pieces that meet [begin, end): from the one holding `begin` on.
-    const auto holding = std::upper_bound(d.starts.begin(), d.starts.end() - 1, begin);
-    const auto first =
-        static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, holding - d.starts.begin() - 1));
-    for (std::size_t k = first; k + 1 < d.starts.size() && d.starts[k] < end; ++k) {
+    for (std::size_t k = d.piece_of(begin); k + 1 < d.starts.size() && d.starts[k] < end; ++k) {
       const std::size_t b = std::max(begin, d.starts[k]), e = std::min(end, d.starts[k + 1]);
       const int owner = d.owners.empty() ? static_cast<int>(k) : d.owners[k];
       for (std::size_t at = b; at < e;) {

@@ -20,7 +20,7 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
   if (p.dimension == 3) axes.push_back(&p.z);
   const std::size_t n = axes.size();
   std::vector<double> mine;
-  for (const Range run : rc.owned)
+  for (const Range run : rc.owned())
     for (std::size_t a = run.begin; a < run.end; ++a)
       for (const std::vector<double>* axis : axes) mine.push_back((*axis)[c.candidates[a]]);
   cost.bytes_sent += 8.0 * static_cast<double>(mine.size());
@@ -40,7 +40,7 @@ void gather_candidate_positions(const RankContact& rc, ContactState& c, Particle
 LocalHalo plan_contact_halo(const RankContact& rc, const ContactState& c, const ParticleStore& p,
                             const LocalLayout& layout, const RankGroup& world, HaloCost& cost) {
   std::vector<std::uint32_t> need;  // global storage indices
-  for (const Range run : rc.owned)
+  for (const Range run : rc.owned())
     for (std::size_t a = run.begin; a < run.end; ++a)
       for (std::uint32_t k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
         const std::uint32_t j = c.partner[k];
@@ -125,9 +125,7 @@ RankContact make_rank_contact(const SolverState& s, const LocalLayout& layout,
     else
       runs.push_back({a, a + 1});
   }
-  if (!layout.owned.empty())
-    rc.owned = rc.moving_by_rank[static_cast<std::size_t>(
-        d.owner_of(layout.global_of[layout.owned.begin]))];
+  if (!layout.owned.empty()) rc.rank = d.owner_of(layout.global_of[layout.owned.begin]);
   for (const auto& list : bond_halo.receive)
     rc.bond_ghosts.insert(rc.bond_ghosts.end(), list.begin(), list.end());
   std::sort(rc.bond_ghosts.begin(), rc.bond_ghosts.end());
@@ -150,7 +148,7 @@ void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layou
     exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y), field_of(p.z)}, cost);
   else
     exchange_halo(world, rc.halo, "contact", {field_of(p.x), field_of(p.y)}, cost);
-  for (const Range run : rc.owned) compute_contact_forces(c, p, run, step);
+  for (const Range run : rc.owned()) compute_contact_forces(c, p, run, step);
   std::int64_t stale = 0;
   {
     CommunicationTime t(cost);
@@ -160,7 +158,7 @@ void rank_contact_pass(RankContact& rc, SolverState& s, const LocalLayout& layou
   for (int r = 1; r < world.size(); ++r) staleness.received(8);
   if (stale == 0) return;
   rebuild_rank_contact(rc, s, layout, world, cost);
-  for (const Range run : rc.owned) compute_contact_forces(c, p, run, step);
+  for (const Range run : rc.owned()) compute_contact_forces(c, p, run, step);
 }
 
 }  // namespace mpsolid

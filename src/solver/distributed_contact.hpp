@@ -29,9 +29,14 @@ struct RankContact {
   // candidate order (one run per owned piece at most; with slabs, each
   // rank one run and the ranks' in rank order), the same on every rank.
   std::vector<std::vector<Range>> moving_by_rank;
-  std::vector<Range> owned;                // this rank's runs
+  int rank = -1;                           // this part's (-1: it owns no particle)
   std::vector<std::uint32_t> bond_ghosts;  // local indices the bond halo refreshes, ascending
   LocalHalo halo;                          // the contact halo, planned at each rebuild
+  // This rank's runs.
+  const std::vector<Range>& owned() const {
+    static const std::vector<Range> none;
+    return rank < 0 ? none : moving_by_rank[static_cast<std::size_t>(rank)];
+  }
 };
 
 // Values `width` per moving candidate, every rank's own in rank order (a

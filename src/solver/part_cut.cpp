@@ -205,7 +205,7 @@ class CutTree {
 // kept whole in its first site's rank.
 Decomposition pieces_of(const CaseSpec& spec, const BodyLayout& layout, const CutTree& tree,
                         int ranks) {
-  const std::vector<bool> whole = bodies_kept_whole(spec, ranks);
+  const std::vector<bool> whole = bodies_kept_whole(spec, layout, ranks);
   std::vector<std::size_t> starts;
   std::vector<int> owners;
   for (const std::size_t b : layout.order) {

@@ -190,8 +190,7 @@ double bond_reach(const CaseSpec& spec) {
   return case_bond_geometry(spec).re * (1.0 + 1e-9) + 1e-9 * spec.l0;
 }
 
-std::vector<bool> bodies_kept_whole(const CaseSpec& spec, int ranks) {
-  const BodyLayout layout = body_layout(spec);
+std::vector<bool> bodies_kept_whole(const CaseSpec& spec, const BodyLayout& layout, int ranks) {
   const double share = static_cast<double>(layout.total) / std::max(ranks, 1);
   std::vector<bool> whole(spec.bodies.size(), false);
   for (std::size_t b = 0; b < spec.bodies.size(); ++b)
@@ -204,7 +203,7 @@ std::vector<bool> bodies_kept_whole(const CaseSpec& spec, int ranks) {
 
 Decomposition decompose_case(const CaseSpec& spec, int ranks) {
   const BodyLayout layout = body_layout(spec);
-  const std::vector<bool> kept = bodies_kept_whole(spec, ranks);
+  const std::vector<bool> kept = bodies_kept_whole(spec, layout, ranks);
   std::vector<Range> whole;
   for (const std::size_t b : layout.order)
     if (kept[b]) whole.push_back(layout.range[b]);

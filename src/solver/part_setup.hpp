@@ -11,6 +11,7 @@
 #include "src/distributed/decomposition.hpp"
 #include "src/distributed/part_message.hpp"
 #include "src/distributed/rank_group.hpp"
+#include "src/solver/setup.hpp"
 
 namespace mpsolid {
 
@@ -18,13 +19,14 @@ namespace mpsolid {
 // than re, whatever the rounding of their positions).
 double bond_reach(const CaseSpec& spec);
 
-// Per body, whether a cut over `ranks` keeps it whole on one rank: a body
-// under a force (its share and its centroid sum over all of it), and a
-// rigid body no larger than a tenth of a rank's share of the particles.
+// Per body (laid out by `layout`, the case's), whether a cut over `ranks`
+// keeps it whole on one rank: a body under a force (its share and its
+// centroid sum over all of it), and a rigid body no larger than a tenth of
+// a rank's share of the particles.
 // A larger rigid body kept whole could unbalance the ranks by more than
 // that, so the cut may split it (src/solver/split_rigid_bodies.hpp), for
 // the price of an all-gather of its projection's chunk sums each step.
-std::vector<bool> bodies_kept_whole(const CaseSpec& spec, int ranks);
+std::vector<bool> bodies_kept_whole(const CaseSpec& spec, const BodyLayout& layout, int ranks);
 
 // The case's cut over `ranks` from its particle count alone (no rank holds
 // the bond table to weigh them by), the bodies bodies_kept_whole names

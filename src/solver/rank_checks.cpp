@@ -89,7 +89,7 @@ void append_rank_check(const RankPart& part, const RankGroup& world, std::vector
   // the first step its contact pass found a pair too close.
   const ContactState& c = part.local.contact;
   std::vector<double> candidates;
-  for (const Range run : part.contact.owned)
+  for (const Range run : part.contact.owned())
     for (std::size_t a = run.begin; a < run.end; ++a) {
       const std::array<double, 3> at = position_of(p, c.candidates[a]);
       candidates.insert(candidates.end(), at.begin(), at.begin() + (p.dimension == 3 ? 3 : 2));

@@ -368,9 +368,8 @@ RankedStepper::RankedStepper(const CaseSpec& spec, Followers& followers, SolverS
         kept.range = head.body_ranges[static_cast<std::size_t>(b)];
   }
   put_loads_in_case_order(spec, head.loads);
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b)
-    if (spec.bodies[b].kind == Kind::rigid && cut.owners_of(head.body_ranges[b]).size() > 1)
-      cut_.split_rigid_bodies.push_back(spec.bodies[b].name);
+  for (const SplitRigidBody& b : parts_->part.split_rigid)
+    cut_.split_rigid_bodies.push_back(b.name);
   counts_.particles = cut.starts.back();
 }
 

@@ -14,7 +14,7 @@ std::vector<SplitRigidBody> split_rigid_bodies(const CaseSpec& spec,
   std::vector<SplitRigidBody> split;
   for (std::size_t b = 0; b < spec.bodies.size() && b < body_ranges.size(); ++b) {
     if (spec.bodies[b].kind != Kind::rigid || d.owners_of(body_ranges[b]).size() < 2) continue;
-    SplitRigidBody s{body_ranges[b], -1};
+    SplitRigidBody s{spec.bodies[b].name, body_ranges[b], -1};
     const auto at = std::find_if(mine.begin(), mine.end(),
                                  [&](const RigidBody& r) { return r.name == spec.bodies[b].name; });
     if (at != mine.end()) s.local = at - mine.begin();

@@ -21,6 +21,7 @@
 namespace mpsolid {
 
 struct SplitRigidBody {
+  std::string name;
   Range global;             // the body's storage range in the run
   std::int64_t local = -1;  // its place among this part's rigid bodies; -1: it holds none
 };

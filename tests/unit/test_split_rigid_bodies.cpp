@@ -117,7 +117,7 @@ TEST(SplitRigidBodies, TheCutSplitsOnlyARigidBodyTooLargeToKeepWhole) {
   const auto kept = [](const CaseSpec& spec, const std::string& name, int ranks) {
     std::size_t b = 0;
     while (spec.bodies.at(b).name != name) ++b;
-    return static_cast<bool>(bodies_kept_whole(spec, ranks)[b]);
+    return static_cast<bool>(bodies_kept_whole(spec, body_layout(spec), ranks)[b]);
   };
   const CaseSpec rail = strip_on_a_rail();
   EXPECT_FALSE(kept(rail, "rail", 2));
